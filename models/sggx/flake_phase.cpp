@@ -1,0 +1,45 @@
+#include "models/sggx/flake_phase.h"
+
+#include <cmath>
+
+namespace mcref::sggx {
+
+double schlick(double f0, double cos_theta) {
+  const double c = std::fmin(1.0, std::fmax(0.0, cos_theta));
+  const double k = 1 - c, k2 = k * k;
+  return f0 + (1 - f0) * k2 * k2 * k;
+}
+
+double flake_reflectance(double gamma, double f0, Vec3 wi, Vec3 h) {
+  return gamma * schlick(f0, std::fabs(dot(wi, h)));
+}
+
+double specular_flake_phase(const Sggx& s, Vec3 wi, Vec3 wo) {
+  const Vec3 sum = wi + wo;
+  const double n2 = dot(sum, sum);
+  if (!(n2 > 1e-24)) return 0;
+  return ndf(s, sum) / (4 * projected_area(s, wi));  // ndf() normalises its argument
+}
+
+double specular_flake_phase_weighted(const Sggx& s, double gamma, double f0, Vec3 wi, Vec3 wo) {
+  const Vec3 sum = wi + wo;
+  const double n2 = dot(sum, sum);
+  if (!(n2 > 1e-24)) return 0;
+  const Vec3 h = sum / std::sqrt(n2);
+  return flake_reflectance(gamma, f0, wi, h) * ndf(s, h) / (4 * projected_area(s, wi));
+}
+
+PhaseSample sample_specular_flake_phase(const Sggx& s, double gamma, double f0, Vec3 wi,
+                                        double u1, double u2) {
+  PhaseSample r;
+  const Vec3 m = sample_visible_normal(s, wi, u1, u2);
+  const double c = dot(wi, m);
+  r.wo = normalize(m * (2 * c) - wi);
+  r.pdf = specular_flake_phase(s, wi, r.wo);
+  if (!(r.pdf > 0)) return r;
+  r.weight = flake_reflectance(gamma, f0, wi, m);
+  r.valid = true;
+  return r;
+}
+
+}  // namespace mcref::sggx

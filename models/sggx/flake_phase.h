@@ -1,0 +1,30 @@
+#pragma once
+// Specular two-sided microflake phase function with an SGGX distribution
+// (Heitz 2015 Sec. 4; SpongeCake Eq. 4-5) and its visible-normal sampler.
+//
+// Directions (see phase_sample.h): wi and wo both point away from the
+// scattering point; wi toward the light, wo toward the receiver. A flake with
+// normal m sends wi to wo = 2 (wi.m) m - wi, so m = +-h with
+// h = normalize(wi + wo).
+#include "models/sggx/phase_sample.h"
+#include "models/sggx/sggx_distribution.h"
+
+namespace mcref::sggx {
+
+// Schlick's approximation f0 + (1 - f0)(1 - c)^5 for a cosine c in [0, 1].
+double schlick(double f0, double cos_theta);
+// Flake reflectance F(h) = gamma * Schlick(f0, |wi.h|); one colour channel.
+// |wi.h| = |wo.h|, so F is reciprocal. gamma is the flake albedo.
+double flake_reflectance(double gamma, double f0, Vec3 wi, Vec3 h);
+// Normalised phase function f_p(wi -> wo) = D(h) / (4 sigma(wi))  (Eq. 4);
+// \int f_p dwo = 1. Returns 0 when wi + wo = 0 (h undefined, measure zero).
+double specular_flake_phase(const Sggx& s, Vec3 wi, Vec3 wo);
+// Albedo-weighted phase F(h) f_p(wi -> wo); \int dwo = mean of F over the
+// visible normals of wi (= gamma when f0 = 1).
+double specular_flake_phase_weighted(const Sggx& s, double gamma, double f0, Vec3 wi, Vec3 wo);
+// Samples wo ~ f_p(wi -> .) by drawing a visible normal m of wi and reflecting
+// wi about it (Heitz 2015 Sec. 5). pdf = f_p, weight = F(m). u1, u2 in [0, 1).
+PhaseSample sample_specular_flake_phase(const Sggx& s, double gamma, double f0, Vec3 wi,
+                                        double u1, double u2);
+
+}  // namespace mcref::sggx

@@ -1,0 +1,27 @@
+#pragma once
+// Isotropic and Henyey-Greenstein phase functions with exact samplers, for
+// non-flake SpongeCake layers (projected area sigma(w) = 1).
+//
+// Directions (see phase_sample.h): wi points toward where the light came from,
+// wo toward where it goes, both away from the scattering point. The scattering
+// angle is between the propagation directions -wi and wo:
+//   cos(theta) = dot(-wi, wo);  g > 0 means forward scattering (wo near -wi).
+#include "models/sggx/phase_sample.h"
+#include "sim/core/vec.h"
+
+namespace mcref::sggx {
+
+// 1 / (4 pi).
+double isotropic_phase();
+// Uniform direction on the sphere; pdf 1/(4 pi), weight = albedo.
+PhaseSample sample_isotropic_phase(double albedo, double u1, double u2);
+
+// p(cos) = (1 - g^2) / (4 pi (1 + g^2 - 2 g cos)^(3/2)), cos = dot(-wi, wo); |g| < 1.
+double hg_phase(double g, Vec3 wi, Vec3 wo);
+// Cosine of the scattering angle for uniform u by exact CDF inversion, written
+// without division by g (stable at g -> 0, where it tends to 2u - 1).
+double sample_hg_cos_theta(double g, double u);
+// Exact HG sample: pdf = hg_phase(g, wi, wo), weight = albedo.
+PhaseSample sample_hg_phase(double g, double albedo, Vec3 wi, double u1, double u2);
+
+}  // namespace mcref::sggx

@@ -1,0 +1,26 @@
+#pragma once
+// The verbs of the mcref command. Each returns the process exit code and
+// throws ConfigError for bad input (printed by main as one line).
+#include <string>
+#include <vector>
+
+namespace mcref::cli {
+
+int simulate(const std::vector<std::string>& args, const std::string& command_line);
+int validate(const std::vector<std::string>& args, const std::string& command_line);
+int info(const std::vector<std::string>& args);
+
+// Small argument parser shared by the verbs.
+struct Args {
+  std::vector<std::string> positional;
+  std::string output;
+  std::vector<std::string> sets;
+  long long seed = -1;
+  int threads = 0;
+  bool quiet = false;
+  bool help = false;
+  bool force = false;
+};
+Args parse_args(const std::vector<std::string>& args, const std::string& verb, bool allow_set_and_seed);
+
+}  // namespace mcref::cli

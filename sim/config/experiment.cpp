@@ -1,0 +1,139 @@
+#include "sim/config/experiment.h"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "sim/config/toml_reader.h"
+#include "sim/core/vec.h"
+
+namespace mcref {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr std::int64_t kMaxCount = std::int64_t(1) << 40;
+
+std::vector<double> to_radians(std::vector<double> v) {
+  for (double& x : v) x = deg_to_rad(x);
+  return v;
+}
+
+void read_geometry(TomlReader& root, Experiment& e) {
+  const toml::table* t = root.table("geometry");
+  if (!t) root.fail("geometry", "is required ([geometry] table with kind = \"micrograin\")");
+  TomlReader g(*t, e.file, "geometry");
+  e.kind = g.string("kind", {"micrograin"});
+  MicrograinGeometry& m = e.micrograin;
+  m.tau0 = g.number("tau0", {0, 1, true, true});
+  const Range beta_range{0, 100, true, false};
+  if (g.has("beta")) {
+    if (g.has("beta_x") || g.has("beta_y")) g.fail("beta", "give either beta or beta_x/beta_y, not both");
+    m.beta_x = m.beta_y = g.number("beta", beta_range);
+  } else if (g.has("beta_x") || g.has("beta_y")) {
+    m.beta_x = g.number("beta_x", beta_range);
+    m.beta_y = g.number("beta_y", beta_range);
+  } else {
+    g.fail("beta", "is required (or beta_x and beta_y), a number in " + beta_range.text());
+  }
+  m.radius = g.number("radius", {0, kInf, true, true}, 1.0);
+  // The tile must hold the grains' footprints with room to spare (> 2 diameters).
+  const double min_tile = 4.0 * std::fmax(m.r_x(), m.r_y()) / m.radius;
+  std::ostringstream lo;
+  lo << "(" << min_tile << ", 1e5]";
+  m.tile = g.number("tile", {min_tile, 1e5, true, false}, 200.0);
+  // Grain count must stay reasonable (about 1e8 at most).
+  const double expected = m.unit_density() * (m.tile * m.radius / m.r_x()) * (m.tile * m.radius / m.r_y());
+  if (expected > 1e8) g.fail("tile", "gives ~" + std::to_string(static_cast<long long>(expected)) +
+                                         " grains; at most 1e8 are allowed");
+  g.finish();
+}
+
+void read_run(TomlReader& root, Experiment& e) {
+  const toml::table* t = root.table("run");
+  static const toml::table empty;
+  TomlReader r(t ? *t : empty, e.file, "run");
+  e.run.seed = static_cast<std::uint64_t>(r.integer("seed", 0, std::numeric_limits<std::int64_t>::max(), 1));
+  e.run.batches = static_cast<int>(r.integer("batches", 2, 1000000, 16));
+  e.run.threads = static_cast<int>(r.integer("threads", 0, 1024, 0));
+  r.finish();
+}
+
+Measure read_measure(const toml::table& t, const Experiment& e, std::size_t index) {
+  TomlReader m(t, e.file, "measure." + std::to_string(index));
+  Measure out;
+  out.quantity = m.string("quantity", known_quantities());
+  out.name = m.any_string("name", out.quantity);
+  const Range theta{0, 90, false, true}, azimuth{-360, 360, false, false};
+  const Range positive_theta{0, 90, false, true};
+  const bool aniso = e.micrograin.anisotropic();
+  out.samples = m.integer("samples", 1, kMaxCount);
+  const std::string& q = out.quantity;
+  if (q == "p1") {
+    out.r_bins = static_cast<int>(m.integer("r_bins", 1, 100000, 60));
+    out.r_max = m.number("r_max", {0, 1e4, true, false}, 3.0);
+  } else if (q == "ndf") {
+    out.theta_m_bins = static_cast<int>(m.integer("theta_m_bins", 1, 10000, 45));
+    out.phi_m_bins = static_cast<int>(m.integer("phi_m_bins", 1, 10000, aniso ? 36 : 1));
+  } else if (q == "pore_visibility") {
+    out.theta_i = to_radians(m.numbers("theta_i_deg", theta));
+    out.phi_i = to_radians(m.numbers("phi_i_deg", azimuth, std::vector<double>{0.0}));
+    if (out.phi_i.size() != 1) m.fail("phi_i_deg", "takes one azimuth for pore_visibility");
+    out.theta_o = to_radians(m.numbers("theta_o_deg", theta));
+    out.phi = to_radians(m.numbers("phi_deg", {-360, 360, false, false}, std::vector<double>{0.0, 90.0, 180.0}));
+  } else {
+    out.theta_i = to_radians(m.numbers("theta_i_deg", q == "tau_plus" ? theta : theta));
+    out.phi_i = to_radians(m.numbers("phi_i_deg", azimuth, std::vector<double>{0.0}));
+    if (q == "tau_height") out.h_points = static_cast<int>(m.integer("h_points", 2, 100000, 21));
+    if (q == "g1" || q == "vndf") {
+      out.theta_m_bins = static_cast<int>(m.integer("theta_m_bins", 1, 10000, 18));
+      out.phi_m_bins = static_cast<int>(m.integer("phi_m_bins", 1, 10000, aniso ? 36 : 18));
+    }
+  }
+  m.finish();
+  return out;
+}
+
+}  // namespace
+
+Experiment parse_experiment(const std::string& text, const std::string& file,
+                            const std::vector<std::string>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(text, file);
+  } catch (const toml::parse_error& err) {
+    std::ostringstream s;
+    s << "line " << err.source().begin.line << ": " << err.description();
+    throw ConfigError(file, "", "TOML syntax error at " + s.str());
+  }
+  for (const std::string& o : overrides) apply_override(root, o, file);
+  Experiment e;
+  e.file = file;
+  std::ostringstream canonical;
+  canonical << root;
+  e.text = canonical.str();
+  TomlReader r(root, file, "");
+  read_geometry(r, e);
+  read_run(r, e);
+  const auto measures = r.tables("measure");
+  if (measures.empty()) r.fail("measure", "at least one [[measure]] table is required");
+  for (std::size_t i = 0; i < measures.size(); ++i) e.measures.push_back(read_measure(*measures[i], e, i));
+  for (std::size_t i = 0; i < e.measures.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (e.measures[i].name == e.measures[j].name)
+        throw ConfigError(file, "measure." + std::to_string(i) + ".name",
+                          "\"" + e.measures[i].name + "\" is used twice; give each measure its own name");
+  r.finish();
+  return e;
+}
+
+Experiment load_experiment(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path, "", "cannot read the file");
+  std::stringstream buf;
+  buf << in.rdbuf();
+  return parse_experiment(buf.str(), path, overrides);
+}
+
+}  // namespace mcref

@@ -1,0 +1,27 @@
+#pragma once
+// Warps from the unit square to common domains (pbrt-v4 style).
+#include "sim/core/vec.h"
+
+namespace mcref {
+
+// Uniform point on the unit disc (concentric map not needed: polar is exact).
+inline void sample_uniform_disc(double u1, double u2, double& x, double& y) {
+  const double r = std::sqrt(u1), phi = 2 * kPi * u2;
+  x = r * std::cos(phi);
+  y = r * std::sin(phi);
+}
+
+// Cosine-weighted direction on the upper hemisphere, pdf = cos(theta)/pi.
+inline Vec3 sample_cosine_hemisphere(double u1, double u2) {
+  double x, y;
+  sample_uniform_disc(u1, u2, x, y);
+  return {x, y, std::sqrt(std::fmax(0.0, 1.0 - x * x - y * y))};
+}
+
+// Uniform direction on the unit sphere, pdf = 1/(4 pi).
+inline Vec3 sample_uniform_sphere(double u1, double u2) {
+  const double z = 1 - 2 * u1, r = std::sqrt(std::fmax(0.0, 1 - z * z)), phi = 2 * kPi * u2;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+}  // namespace mcref

@@ -1,0 +1,116 @@
+#pragma once
+// A random micrograin field (LRPB23 Sec. 3): grain centres form a Poisson
+// process on a square periodic tile of the plane z = 0; every grain is the
+// upper half (z >= 0) of an ellipsoid with horizontal semi-axes r_x, r_y and
+// vertical semi-axis c. The base plane z = 0 lies below.
+//
+// Internally everything is traced in the "unit space" x/r_x, y/r_y, z/c, where
+// grains are unit spheres (Embree sphere points, exact roots refined in double
+// precision) and ray parameters t are the same as in real space. Rays wrap
+// periodically at the tile's sides, so the field is infinite.
+#include <embree3/rtcore.h>
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "sim/core/vec.h"
+
+namespace mcref {
+
+struct MicrograinGeometry {
+  double tau0 = 0.5;     // filling factor (LRPB23 Eq. 13), in (0, 1)
+  double beta_x = 1.0;   // slope scale c / r_x
+  double beta_y = 1.0;   // slope scale c / r_y
+  double radius = 1.0;   // sqrt(r_x r_y), the (geometric-mean) horizontal radius
+  double tile = 100.0;   // tile side, in units of `radius`
+  bool anisotropic() const { return beta_x != beta_y; }
+  // Semi-axes: c = radius sqrt(beta_x beta_y), r_x = c / beta_x, r_y = c / beta_y.
+  double c() const;
+  double r_x() const;
+  double r_y() const;
+  // Centre density per unit real area: rho = -ln(1 - tau0) / (pi r_x r_y).
+  double density() const;
+  // Density in unit space: -ln(1 - tau0) / pi.
+  double unit_density() const;
+};
+
+struct Hit {
+  enum class Kind { Escape, Grain, Base };
+  Kind kind = Kind::Escape;
+  double t = 0;       // distance travelled along the (unit, real-space) direction
+  Vec3 position;      // real space, wrapped into the tile
+  Vec3 normal;        // real-space unit normal (grain: ellipsoid normal; base: +z)
+  Vec3 unit_normal;   // unit-space normal (= unit-space position relative to the centre)
+  std::uint32_t grain = 0;  // index of the grain (real, not a ghost copy)
+};
+
+class MicrograinField {
+ public:
+  // Builds one realization of the field from its own seed.
+  MicrograinField(const MicrograinGeometry& geometry, std::uint64_t seed);
+  ~MicrograinField();
+  MicrograinField(const MicrograinField&) = delete;
+  MicrograinField& operator=(const MicrograinField&) = delete;
+
+  const MicrograinGeometry& geometry() const { return geometry_; }
+  std::size_t grain_count() const { return centres_.size(); }
+  // Unit-space centre (z = 0) of grain k.
+  Vec3 unit_centre(std::size_t k) const { return centres_[k]; }
+  // Tile side in real units and in unit space.
+  double tile_side() const { return side_; }
+  double unit_side_x() const { return side_x_; }
+  double unit_side_y() const { return side_y_; }
+
+  // First surface hit along a ray (real space; `direction` unit length).
+  Hit intersect(Vec3 origin, Vec3 direction) const;
+  // Same, with origin and direction already in unit space (hot path for
+  // estimators; the direction need not be unit length, t is in its units).
+  Hit intersect_unit(Vec3 unit_origin, Vec3 unit_direction) const;
+  // True if a ray from a unit-space point meets a grain or the base before
+  // leaving the grain layer. `start_grain` is the grain the point lies on
+  // (kNoGrain for a point on the base), so that it is not hit again.
+  bool occluded_unit(Vec3 unit_origin, Vec3 unit_direction, std::uint32_t start_grain) const;
+  static constexpr std::uint32_t kNoGrain = 0xFFFFFFFFu;
+
+  // Calls fn(k, d2) for every grain whose unit-space centre lies within
+  // unit-space distance `reach` of the unit-space point (x, y) (periodic);
+  // d2 is the squared periodic distance.
+  void for_grains_near(double x, double y, double reach,
+                       const std::function<void(std::size_t, double)>& fn) const;
+  // Periodic unit-space distance from (x, y) to the closest centre
+  // (infinity if the tile holds no grain).
+  double nearest_centre_distance(double x, double y) const;
+  // True if the unit-space point p lies strictly inside a grain other than `except`.
+  bool inside_other_grain(Vec3 p, std::size_t except) const;
+
+  Vec3 to_unit(Vec3 p) const { return {p.x * inv_rx_, p.y * inv_ry_, p.z * inv_c_}; }
+  Vec3 from_unit(Vec3 p) const { return {p.x * rx_, p.y * ry_, p.z * c_}; }
+  // Real-space normal from a unit-space one (inverse transpose of the map).
+  Vec3 normal_from_unit(Vec3 n) const { return normalize(Vec3{n.x * inv_rx_, n.y * inv_ry_, n.z * inv_c_}); }
+  // Wraps a unit-space point into [0, side_x) x [0, side_y).
+  Vec3 wrap_unit(Vec3 p) const;
+
+  // Raw Embree handles, for benchmarks that compare with bare rtcIntersect1.
+  RTCScene embree_scene() const { return scene_; }
+
+ private:
+  void build_grid();
+  void build_scene();
+  Hit trace(Vec3 unit_origin, Vec3 unit_direction, std::uint32_t start_grain) const;
+
+  MicrograinGeometry geometry_;
+  double rx_, ry_, c_, inv_rx_, inv_ry_, inv_c_;
+  double side_, side_x_, side_y_;
+  std::vector<Vec3> centres_;          // real grains, unit space
+  std::vector<std::uint32_t> owner_;   // Embree primitive -> real grain index
+  std::vector<Vec3> prim_centres_;     // Embree primitive centres (with ghost copies)
+  // Uniform grid over the unit tile for neighbour queries.
+  int grid_nx_ = 1, grid_ny_ = 1;
+  double cell_x_ = 1, cell_y_ = 1;
+  std::vector<std::uint32_t> cell_start_, cell_items_;
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+};
+
+}  // namespace mcref

@@ -1,0 +1,47 @@
+#pragma once
+// HDF5 table files. Layout (format "mcref-tables", version 1):
+//   /                      attributes: mcref_format, format_version, mcref_version,
+//                          git_commit, created, command_line, seed, config,
+//                          source_file, conventions
+//   /<table>/              one group per table; attributes: quantity, units,
+//                          description, batches, axes (comma-separated, in
+//                          dimension order) and any table-specific notes
+//   /<table>/value         mean over batches            (N-d, float64)
+//   /<table>/stderr        standard error of the mean   (N-d)
+//   /<table>/sum, sum_sq   raw sums over batches        (N-d)
+//   /<table>/<axis>        axis points or bin centres: HDF5 dimension scales
+//   /<table>/<axis>_edges  bin edges (binned axes only)
+// Files are written to a temporary name and renamed into place, so a failed
+// write never leaves a half-written file nor replaces a good one.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sim/tally/table.h"
+
+namespace mcref {
+
+struct Provenance {
+  std::string mcref_version, git_commit, created, command_line, config, source_file;
+  std::uint64_t seed = 0;
+};
+
+struct TableFile {
+  Provenance provenance;
+  std::vector<Table> tables;
+  const Table* find(const std::string& name) const;
+};
+
+// The conventions every file states (DESIGN.md).
+const char* table_conventions();
+std::string mcref_version();
+std::string mcref_git_commit();
+// Provenance for a run now: version, commit, UTC date, command line.
+Provenance make_provenance(const std::string& config_text, const std::string& source_file, std::uint64_t seed,
+                           const std::string& command_line);
+
+void write_table_file(const std::string& path, const TableFile& file);
+// Throws ConfigError (file, reason) if unreadable or not written by mcref.
+TableFile read_table_file(const std::string& path);
+
+}  // namespace mcref

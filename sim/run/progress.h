@@ -1,0 +1,27 @@
+#pragma once
+// A progress line with an ETA on a terminal; silent when --quiet, when stderr
+// is not a terminal, or in CI (CI env variable set). One summary line at the end
+// is printed by the caller.
+#include <chrono>
+#include <string>
+
+namespace mcref {
+
+class Progress {
+ public:
+  Progress(std::string label, double total_work, bool quiet);
+  // Adds done work and redraws (at most ~5 times a second).
+  void advance(double work);
+  // Clears the line.
+  void finish();
+  double elapsed_seconds() const;
+  static bool interactive(bool quiet);
+
+ private:
+  std::string label_;
+  double total_, done_ = 0;
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_, last_draw_;
+};
+
+}  // namespace mcref

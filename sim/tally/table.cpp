@@ -1,0 +1,101 @@
+#include "sim/tally/table.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace mcref {
+
+Axis Axis::bins(std::string name, std::string unit, std::vector<double> edges) {
+  if (edges.size() < 2) throw std::invalid_argument("axis " + name + " needs at least 2 edges");
+  return {std::move(name), std::move(unit), Kind::Bins, std::move(edges)};
+}
+
+Axis Axis::uniform_bins(std::string name, std::string unit, double lo, double hi, int n) {
+  std::vector<double> e(n + 1);
+  for (int i = 0; i <= n; ++i) e[i] = lo + (hi - lo) * i / n;
+  e[n] = hi;
+  return bins(std::move(name), std::move(unit), std::move(e));
+}
+
+Axis Axis::points(std::string name, std::string unit, std::vector<double> values) {
+  return {std::move(name), std::move(unit), Kind::Points, std::move(values)};
+}
+
+int Axis::find_bin(double x) const {
+  if (!(x >= values.front() && x < values.back())) return -1;
+  // Uniform bins are the common case; fall back to bisection.
+  const std::size_t n = values.size() - 1;
+  std::size_t i = static_cast<std::size_t>((x - values.front()) / (values.back() - values.front()) * n);
+  if (i >= n) i = n - 1;
+  if (x >= values[i] && x < values[i + 1]) return static_cast<int>(i);
+  std::size_t lo = 0, hi = n;
+  while (hi - lo > 1) {
+    const std::size_t mid = (lo + hi) / 2;
+    (x < values[mid] ? hi : lo) = mid;
+  }
+  return static_cast<int>(lo);
+}
+
+Table::Table(std::string name_, std::string quantity_, std::vector<Axis> axes_)
+    : name(std::move(name_)), quantity(std::move(quantity_)), axes(std::move(axes_)) {
+  std::size_t n = 1;
+  for (const Axis& a : axes) n *= a.size();
+  sum.assign(n, 0.0);
+  sum_sq.assign(n, 0.0);
+}
+
+std::vector<std::size_t> Table::shape() const {
+  std::vector<std::size_t> s;
+  for (const Axis& a : axes) s.push_back(a.size());
+  return s;
+}
+
+std::size_t Table::index(const std::vector<std::size_t>& idx) const {
+  std::size_t k = 0;
+  for (std::size_t d = 0; d < axes.size(); ++d) k = k * axes[d].size() + idx[d];
+  return k;
+}
+
+void Table::add_batch(const std::vector<double>& estimate) {
+  if (estimate.size() != sum.size()) throw std::logic_error("batch size mismatch in table " + name);
+  for (std::size_t i = 0; i < sum.size(); ++i) {
+    sum[i] += estimate[i];
+    sum_sq[i] += estimate[i] * estimate[i];
+  }
+  ++batches;
+}
+
+void Table::merge(const Table& other) {
+  if (other.name != name || other.axes.size() != axes.size() || other.sum.size() != sum.size())
+    throw std::invalid_argument("cannot merge table " + other.name + " into " + name);
+  for (std::size_t d = 0; d < axes.size(); ++d)
+    if (!(axes[d] == other.axes[d])) throw std::invalid_argument("axes differ in table " + name);
+  for (std::size_t i = 0; i < sum.size(); ++i) {
+    sum[i] += other.sum[i];
+    sum_sq[i] += other.sum_sq[i];
+  }
+  batches += other.batches;
+}
+
+double Table::value(std::size_t i) const { return batches > 0 ? sum[i] / batches : NAN; }
+
+double Table::stderr_of(std::size_t i) const {
+  if (batches < 2) return NAN;
+  const double n = static_cast<double>(batches), mean = sum[i] / n;
+  const double var = std::fmax(0.0, (sum_sq[i] - n * mean * mean) / (n - 1));
+  return std::sqrt(var / n);
+}
+
+std::vector<double> Table::values() const {
+  std::vector<double> v(cells());
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = value(i);
+  return v;
+}
+
+std::vector<double> Table::stderrs() const {
+  std::vector<double> v(cells());
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = stderr_of(i);
+  return v;
+}
+
+}  // namespace mcref

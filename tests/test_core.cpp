@@ -1,0 +1,79 @@
+// sim/core: RNG streams, frames, warps, quadrature.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "sim/core/frame.h"
+#include "sim/core/quadrature.h"
+#include "sim/core/rng.h"
+#include "sim/core/warp.h"
+
+using namespace mcref;
+
+TEST(Rng, SameSeedSameStream) {
+  Rng a(stream_seed({1, 2, 3})), b(stream_seed({1, 2, 3}));
+  for (int i = 0; i < 1000; ++i) ASSERT_EQ(a.next_u64(), b.next_u64());
+}
+
+TEST(Rng, StreamSeedDependsOnEveryKeyAndOrder) {
+  std::set<std::uint64_t> seen;
+  for (std::uint64_t a = 0; a < 8; ++a)
+    for (std::uint64_t b = 0; b < 8; ++b)
+      for (std::uint64_t c = 0; c < 8; ++c) seen.insert(stream_seed({a, b, c}));
+  EXPECT_EQ(seen.size(), 512u);
+  EXPECT_NE(stream_seed({1, 2}), stream_seed({2, 1}));
+}
+
+// Seed 7, 10^6 draws: the mean of U(0,1) has stderr 1/sqrt(12e6); 4-sigma band.
+TEST(Rng, UniformMeanWithinFourSigma) {
+  Rng r(7);
+  const int n = 1000000;
+  double s = 0;
+  for (int i = 0; i < n; ++i) {
+    const double u = r.uniform();
+    ASSERT_GE(u, 0.0);
+    ASSERT_LT(u, 1.0);
+    s += u;
+  }
+  EXPECT_NEAR(s / n, 0.5, 4.0 / std::sqrt(12.0 * n));
+}
+
+// Seed 11: 2000 Poisson(50) draws; mean stderr sqrt(50/2000); 4-sigma band.
+TEST(Rng, PoissonMeanWithinFourSigma) {
+  Rng r(11);
+  const int n = 2000;
+  double s = 0;
+  for (int i = 0; i < n; ++i) s += static_cast<double>(r.poisson(50.0));
+  EXPECT_NEAR(s / n, 50.0, 4.0 * std::sqrt(50.0 / n));
+}
+
+// Streams of neighbouring chunks must not be correlated: correlation of the
+// first 10^5 uniforms of chunk 0 and chunk 1 is ~N(0, 1/n); 4-sigma band.
+TEST(Rng, NeighbouringStreamsUncorrelated) {
+  Rng a(stream_seed({5, 0, 0, 0, 0})), b(stream_seed({5, 0, 0, 0, 1}));
+  const int n = 100000;
+  double sab = 0;
+  for (int i = 0; i < n; ++i) sab += (a.uniform() - 0.5) * (b.uniform() - 0.5);
+  const double corr = sab / n * 12.0;
+  EXPECT_LT(std::fabs(corr), 4.0 / std::sqrt(n));
+}
+
+TEST(Frame, IsOrthonormalAndRoundTrips) {
+  Rng r(3);
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 n = sample_uniform_sphere(r.uniform(), r.uniform());
+    const Frame f(n);
+    EXPECT_NEAR(dot(f.s, f.t), 0, 1e-12);
+    EXPECT_NEAR(dot(f.s, f.n), 0, 1e-12);
+    EXPECT_NEAR(length(f.s), 1, 1e-12);
+    const Vec3 v{0.3, -0.2, 0.9};
+    const Vec3 back = f.to_world(f.to_local(v));
+    EXPECT_NEAR(length(back - v), 0, 1e-12);
+  }
+}
+
+TEST(Quadrature, GaussLegendreIsExactForPolynomials) {
+  GaussLegendre g(8);  // exact to degree 15
+  EXPECT_NEAR(g.integrate([](double x) { return std::pow(x, 14); }, 0, 2), std::pow(2, 15) / 15, 1e-9);
+  EXPECT_NEAR(integrate_composite([](double x) { return std::sin(x); }, 0, kPi), 2.0, 1e-13);
+}
