@@ -3,7 +3,7 @@
 // (theta_i, theta_o, phi = phi_o - phi_i). Beside it, the product
 // V_p(i) V_p(o) that assumes independent visibilities, which is what LRPB23
 // Eq. 23/24 use: 1 - w+(i, o) = (1 - tau0) V_p(i) V_p(o).
-#include <map>
+#include <sstream>
 
 #include "sim/estimators/estimator.h"
 
@@ -17,8 +17,13 @@ Estimator pore_visibility_estimator() {
     joint.units = "1";
     joint.description = "P(pore point visible from i and from o | base point in a pore)";
     joint.attributes["phi"] = "relative azimuth phi_o - phi_i; 0 = back toward the light";
+    std::ostringstream phi_i;
+    phi_i.precision(17);
+    phi_i << m.phi_i.front();
+    joint.attributes["phi_i"] = phi_i.str();  // azimuth of i (rad)
     Table product(m.name + "_independent", "pore_visibility_independent", axes);
     product.units = "1";
+    product.attributes = joint.attributes;
     product.description = "P(visible from i | pore) * P(visible from o | pore), per batch (the independence assumption of Eq. 23)";
     return std::vector<Table>{joint, product};
   };

@@ -1,0 +1,119 @@
+#!/usr/bin/python3
+"""Plots of a validation run: one PNG per case under OUTDIR/plots/.
+
+Reads OUTDIR/results.json (checks, model values per cell) and the simulated
+tables OUTDIR/tables/<case>.h5 (value, stderr, axes). Simulation: points
+with 1-sigma error bars; models: lines over the same cells (bin averages).
+Needs Debian's python3-matplotlib, python3-h5py, python3-numpy.
+
+usage: /usr/bin/python3 scripts/plot_validation.py OUTDIR [--quiet]
+"""
+import itertools
+import json
+import os
+import sys
+
+try:
+    import h5py
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+except ImportError as e:  # pragma: no cover
+    sys.exit(f"plot_validation.py: missing module ({e}); run scripts/setup.sh "
+             "and use /usr/bin/python3")
+
+# The axis along x for each quantity; other axes become series.
+X_AXIS = {"p1": "r", "ndf": "theta_m", "tau_plus": "theta_i", "tau_height": "h",
+          "g1": "theta_i", "g1_conditional": "theta_m", "vndf": "theta_m",
+          "pore_visibility": "theta_o", "pore_visibility_independent": "theta_o"}
+MAX_SERIES = 6
+STYLES = ["-", "--", ":", "-."]
+
+
+def load_table(group):
+    names = group.attrs["axes"]
+    names = names.decode() if isinstance(names, bytes) else names
+    axes = []
+    for n in names.split(","):
+        ds = group[n]
+        unit = ds.attrs.get("unit", "")
+        unit = unit.decode() if isinstance(unit, bytes) else unit
+        axes.append((n, np.asarray(ds), unit))
+    return axes, np.asarray(group["value"]), np.asarray(group["stderr"])
+
+
+def label_value(name, v, unit):
+    return f"{name}={np.degrees(v):.0f}°" if unit == "rad" else f"{name}={v:.3g}"
+
+
+def plot_table(ax, quantity, axes, value, stderr, models):
+    names = [a[0] for a in axes]
+    xname = X_AXIS.get(quantity, names[-1])
+    xi = names.index(xname) if xname in names else len(names) - 1
+    x = axes[xi][1]
+    xdeg = axes[xi][2] == "rad"
+    xs = np.degrees(x) if xdeg else x
+    others = [d for d in range(len(axes)) if d != xi and len(axes[d][1]) > 0]
+    combos = list(itertools.product(*[range(len(axes[d][1])) for d in others]))
+    if len(combos) > MAX_SERIES:
+        pick = np.linspace(0, len(combos) - 1, MAX_SERIES).round().astype(int)
+        combos = [combos[i] for i in sorted(set(pick))]
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for s, combo in enumerate(combos):
+        sl = [slice(None)] * len(axes)
+        for d, i in zip(others, combo):
+            sl[d] = i
+        sl = tuple(sl)
+        c = colours[s % len(colours)]
+        label = ", ".join(label_value(axes[d][0], axes[d][1][i], axes[d][2])
+                          for d, i in zip(others, combo) if len(axes[d][1]) > 1)
+        ax.errorbar(xs, value[sl], yerr=stderr[sl], fmt="o", ms=3, color=c, capsize=2,
+                    label=("sim " + label).strip())
+        for m, (mname, mvals) in enumerate(models):
+            ax.plot(xs, mvals[sl], STYLES[m % len(STYLES)], color=c, lw=1.2,
+                    label=mname if s == 0 else None)
+    ax.set_xlabel(xname + (" (deg)" if xdeg else ""))
+    ax.set_ylabel(quantity)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=6)
+
+
+def main():
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    quiet = "--quiet" in sys.argv
+    if len(args) != 1:
+        sys.exit(__doc__)
+    out = args[0]
+    with open(os.path.join(out, "results.json")) as f:
+        results = json.load(f)
+    os.makedirs(os.path.join(out, "plots"), exist_ok=True)
+    for case in results["cases"]:
+        tables = []
+        for chk in case["checks"]:
+            if chk["table"] not in tables:
+                tables.append(chk["table"])
+        fig, axs = plt.subplots(1, len(tables), figsize=(5.5 * len(tables), 4.2), squeeze=False)
+        with h5py.File(os.path.join(out, case["tables"]), "r") as h5:
+            for ax, name in zip(axs[0], tables):
+                axes, value, stderr = load_table(h5[name])
+                models = [(c["model"], np.array([np.nan if v is None else v for v in c["model_values"]],
+                                                dtype=float).reshape(value.shape))
+                          for c in case["checks"] if c["table"] == name]
+                quantity = next(c["quantity"] for c in case["checks"] if c["table"] == name)
+                plot_table(ax, quantity, axes, value, stderr, models)
+                ax.set_title(name, fontsize=9)
+        title = case["name"] + (f" ({case['figure']})" if case["figure"] else "")
+        fig.suptitle(title, fontsize=10)
+        fig.tight_layout()
+        path = os.path.join(out, "plots", case["name"] + ".png")
+        fig.savefig(path + ".tmp.png", dpi=110)
+        os.replace(path + ".tmp.png", path)
+        plt.close(fig)
+    if not quiet:
+        print(f"plot_validation.py: {len(results['cases'])} plots in {os.path.join(out, 'plots')}",
+              file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()

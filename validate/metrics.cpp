@@ -1,0 +1,71 @@
+#include "validate/metrics.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "validate/statistics.h"
+
+namespace mcref {
+
+Comparison compare(const std::vector<double>& sim, const std::vector<double>& se, const std::vector<double>& model,
+                   long long batches) {
+  Comparison c;
+  c.z.assign(sim.size(), NAN);
+  const double nu = static_cast<double>(batches - 1);
+  double rel2 = 0;
+  for (std::size_t i = 0; i < sim.size(); ++i) {
+    if (!std::isfinite(sim[i]) || !std::isfinite(model[i]) || !std::isfinite(se[i]) || se[i] <= 0) continue;
+    const double t = (sim[i] - model[i]) / se[i];
+    // Probability-preserving map from t(nu) to N(0, 1), done on the tail
+    // P(T > |t|) = I_{nu/(nu+t^2)}(nu/2, 1/2) / 2 to keep precision.
+    const double tail = 0.5 * regularized_beta(nu / (nu + t * t), nu / 2, 0.5);
+    double z = std::copysign(-normal_quantile(tail), t);
+    if (!std::isfinite(z)) z = t;  // beyond double range: keep t (the verdict is FAIL anyway)
+    c.z[i] = z;
+    ++c.cells;
+    c.chi2 += z * z;
+    if (std::fabs(z) > c.max_abs_z) {
+      c.max_abs_z = std::fabs(z);
+      c.worst_cell = i;
+    }
+    if (std::fabs(sim[i]) > 5 * se[i] && model[i] != 0) {
+      const double rel = std::fabs(sim[i] - model[i]) / std::fabs(model[i]);
+      c.max_rel_error = std::fmax(c.max_rel_error, rel);
+      rel2 += rel * rel;
+      ++c.signal_cells;
+    }
+  }
+  c.p_value = c.cells ? chi2_survival(c.chi2, static_cast<double>(c.cells)) : 1;
+  c.rms_rel_error = c.signal_cells ? std::sqrt(rel2 / c.signal_cells) : 0;
+  return c;
+}
+
+Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance) {
+  char buf[256];
+  if (c.cells == 0) return {"FAIL", "no cell could be compared"};
+  if (exact) {
+    const double bound = sidak_z_bound(alpha, static_cast<double>(c.cells));
+    if (c.p_value < alpha) {
+      std::snprintf(buf, sizeof buf, "chi2/dof = %.3g over %zu cells, p = %.2g < %.2g", c.chi2_per_dof(), c.cells,
+                    c.p_value, alpha);
+      return {"FAIL", buf};
+    }
+    if (c.max_abs_z > bound) {
+      std::snprintf(buf, sizeof buf, "max |z| = %.2f > %.2f (Sidak bound at %.2g over %zu cells)", c.max_abs_z, bound,
+                    alpha, c.cells);
+      return {"FAIL", buf};
+    }
+    std::snprintf(buf, sizeof buf, "p = %.2g >= %.2g; max |z| = %.2f <= %.2f", c.p_value, alpha, c.max_abs_z, bound);
+    return {"pass", buf};
+  }
+  if (tolerance > 0) {
+    std::snprintf(buf, sizeof buf, "max rel. error %.3g %s tolerance %.3g", c.max_rel_error,
+                  c.max_rel_error <= tolerance ? "<=" : ">", tolerance);
+    return {c.max_rel_error <= tolerance ? "pass" : "FAIL", buf};
+  }
+  std::snprintf(buf, sizeof buf, "max rel. error %.3g, rms %.3g (approximate model, no tolerance set)",
+                c.max_rel_error, c.rms_rel_error);
+  return {"measured", buf};
+}
+
+}  // namespace mcref

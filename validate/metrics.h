@@ -1,0 +1,38 @@
+#pragma once
+// Comparison of a simulated table with a model on the same cells.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace mcref {
+
+struct Comparison {
+  std::size_t cells = 0;         // cells compared (finite sim, model and stderr > 0)
+  double chi2 = 0;               // sum of z^2
+  double p_value = 1;            // chi-squared survival of chi2 with `cells` dof
+  double max_abs_z = 0;
+  std::size_t worst_cell = 0;    // flat index of max |z|
+  double max_rel_error = 0;      // max |sim - model| / |model| over cells with signal
+  double rms_rel_error = 0;
+  std::size_t signal_cells = 0;  // cells with |sim| > 5 stderr
+  std::vector<double> z;         // per cell (NaN where not compared)
+  double chi2_per_dof() const { return cells ? chi2 / static_cast<double>(cells) : 0; }
+};
+
+// Per-cell z: the t statistic (sim - model)/stderr with `batches - 1`
+// degrees of freedom (the stderr comes from the batch-to-batch spread),
+// mapped to the standard normal quantile of the same probability, so that
+// chi2 and the |z| bound are exact for any batch count.
+Comparison compare(const std::vector<double>& sim, const std::vector<double>& stderr_,
+                   const std::vector<double>& model, long long batches);
+
+struct Verdict {
+  std::string status;  // "pass", "FAIL", or "measured" (approximate model, no tolerance)
+  std::string reason;
+};
+
+// Exact model: passes iff p_value >= alpha and max|z| <= Sidak bound at alpha.
+// Approximate model: passes iff max_rel_error <= tolerance (if tolerance > 0).
+Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance);
+
+}  // namespace mcref

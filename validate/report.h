@@ -1,0 +1,35 @@
+#pragma once
+// The validation report: results.json (every check and its per-cell model
+// values, read by scripts/plot_validation.py), plots, and report.html.
+#include <string>
+#include <vector>
+
+#include "sim/io/table_file.h"
+#include "validate/metrics.h"
+
+namespace mcref {
+
+struct Suite;
+struct SuiteOptions;
+
+struct CheckResult {
+  std::string table, quantity, model, model_description;
+  bool exact = false;
+  double tolerance = 0;
+  std::vector<double> model_values;
+  Comparison comparison;
+  Verdict verdict;
+};
+
+struct CaseResult {
+  std::string name, figure, description, table_file;
+  bool reused = false;
+  Provenance provenance;
+  std::vector<CheckResult> checks;
+};
+
+// Writes OUTDIR/results.json, runs the plot script, writes OUTDIR/report.html,
+// and prints the summary and the report's path.
+void write_report(const Suite& suite, const std::vector<CaseResult>& results, const SuiteOptions& options);
+
+}  // namespace mcref

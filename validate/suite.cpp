@@ -1,0 +1,168 @@
+#include "validate/suite.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "sim/config/toml_reader.h"
+#include "sim/io/table_file.h"
+#include "sim/run/simulate.h"
+#include "validate/metrics.h"
+#include "validate/model_evaluation.h"
+#include "validate/report.h"
+
+namespace fs = std::filesystem;
+
+namespace mcref {
+
+Suite load_suite(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path, "", "cannot read the file");
+  std::stringstream buf;
+  buf << in.rdbuf();
+  toml::table root;
+  try {
+    root = toml::parse(buf.str(), path);
+  } catch (const toml::parse_error& e) {
+    throw ConfigError(path, "", "TOML syntax error at line " + std::to_string(e.source().begin.line) + ": " +
+                                    std::string(e.description()));
+  }
+  Suite s;
+  s.file = path;
+  TomlReader r(root, path, "");
+  const toml::table* head = r.table("suite");
+  if (!head) r.fail("suite", "is required ([suite] with name)");
+  TomlReader h(*head, path, "suite");
+  s.name = h.any_string("name");
+  s.title = h.any_string("title", s.name);
+  s.significance = h.number("significance", {0, 0.5, true, true}, 1e-3);
+  h.finish();
+  const fs::path dir = fs::path(path).parent_path();
+  const auto cases = r.tables("case");
+  if (cases.empty()) r.fail("case", "at least one [[case]] is required");
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    TomlReader c(*cases[i], path, "case." + std::to_string(i));
+    Case k;
+    k.name = c.any_string("name");
+    for (const Case& other : s.cases)
+      if (other.name == k.name) c.fail("name", "\"" + k.name + "\" is used twice");
+    if (k.name.find_first_of("/\\ ") != std::string::npos) c.fail("name", "must not contain '/', '\\' or spaces");
+    k.figure = c.any_string("figure", "");
+    k.description = c.any_string("description", "");
+    k.experiment_path = (dir / c.any_string("experiment")).string();
+    k.sets = c.strings("set");
+    for (const toml::table* ct : c.tables("check")) {
+      TomlReader cr(*ct, path, c.full("check"));
+      Check chk;
+      chk.table = cr.any_string("table");
+      chk.model = cr.any_string("model");
+      const ModelInfo* m = find_model(chk.model);
+      if (!m) cr.fail("model", "\"" + chk.model + "\" is not a known model");
+      chk.tolerance = cr.number("tolerance", {0, 1e6, false, false}, 0.0);
+      if (m->exact && chk.tolerance > 0)
+        cr.fail("tolerance", "is not allowed for an exact model (it must agree within its standard errors)");
+      cr.finish();
+      k.checks.push_back(chk);
+    }
+    c.finish();
+    s.cases.push_back(k);
+  }
+  r.finish();
+  return s;
+}
+
+namespace {
+
+// Loads cached tables if current, else simulates and writes them.
+TableFile tables_for(const Case& c, const Experiment& ex, const SuiteOptions& o, const std::string& path,
+                     std::size_t k, std::size_t n, bool& reused) {
+  reused = false;
+  if (!o.force && fs::exists(path)) {
+    try {
+      TableFile cached = read_table_file(path);
+      if (cached.provenance.config == ex.text) {
+        reused = true;
+        return cached;
+      }
+    } catch (const ConfigError&) {
+      // unreadable or foreign: simulate again and replace it
+    }
+  }
+  SimulateOptions so;
+  so.threads = o.threads;
+  so.quiet = o.quiet;
+  so.label = "[" + std::to_string(k + 1) + "/" + std::to_string(n) + "] " + c.name;
+  TableFile f;
+  f.tables = simulate(ex, so);
+  f.provenance = make_provenance(ex.text, ex.file, ex.run.seed, o.command_line);
+  write_table_file(path, f);
+  return f;
+}
+
+}  // namespace
+
+int run_suite(const Suite& suite, const SuiteOptions& o) {
+  // Validate every case's experiment before simulating anything.
+  std::vector<Experiment> experiments;
+  for (const Case& c : suite.cases) experiments.push_back(load_experiment(c.experiment_path, c.sets));
+  for (std::size_t k = 0; k < suite.cases.size(); ++k)
+    for (const Check& chk : suite.cases[k].checks) {
+      bool found = false;
+      for (const Measure& m : experiments[k].measures)
+        found = found || chk.table == m.name || chk.table == m.name + "_conditional" || chk.table == m.name + "_independent";
+      if (!found)
+        throw ConfigError(suite.file, "case." + std::to_string(k) + ".check",
+                          "table \"" + chk.table + "\" is not produced by " + suite.cases[k].experiment_path);
+    }
+  fs::create_directories(fs::path(o.out_dir) / "tables");
+  std::vector<CaseResult> results;
+  int failures = 0;
+  for (std::size_t k = 0; k < suite.cases.size(); ++k) {
+    const Case& c = suite.cases[k];
+    const Experiment& ex = experiments[k];
+    CaseResult cr;
+    cr.name = c.name;
+    cr.figure = c.figure;
+    cr.description = c.description;
+    cr.table_file = (fs::path("tables") / (c.name + ".h5")).string();
+    const TableFile f = tables_for(c, ex, o, (fs::path(o.out_dir) / cr.table_file).string(), k, suite.cases.size(), cr.reused);
+    cr.provenance = f.provenance;
+    std::vector<Check> checks = c.checks;
+    if (checks.empty())
+      for (const Table& t : f.tables)
+        for (const ModelInfo& m : models_for(t.quantity))
+          if (!(ex.micrograin.anisotropic() &&
+                (m.name == "ndf_ggx_alpha_tilde" || m.name == "g1_smith_series_n4" || m.name == "g1_smith_ggx_alpha_tilde")))
+            checks.push_back({t.name, m.name, 0.0});
+    for (const Check& chk : checks) {
+      const Table* t = f.find(chk.table);
+      if (!t) throw std::runtime_error("table " + chk.table + " missing from " + cr.table_file);
+      const ModelInfo* info = find_model(chk.model);
+      CheckResult r;
+      r.table = chk.table;
+      r.quantity = t->quantity;
+      r.model = chk.model;
+      r.exact = info->exact;
+      r.model_description = info->description;
+      r.tolerance = chk.tolerance;
+      r.model_values = evaluate_model(chk.model, *t, ex.micrograin);
+      r.comparison = compare(t->values(), t->stderrs(), r.model_values, t->batches);
+      r.verdict = judge(r.comparison, info->exact, suite.significance, chk.tolerance);
+      if (r.verdict.status == "FAIL") ++failures;
+      cr.checks.push_back(std::move(r));
+    }
+    results.push_back(std::move(cr));
+    if (!o.quiet) {
+      int bad = 0;
+      for (const CheckResult& r : results.back().checks) bad += r.verdict.status == "FAIL";
+      std::fprintf(stderr, "[%zu/%zu] %-34s %s%s\n", k + 1, suite.cases.size(), c.name.c_str(),
+                   bad ? "FAIL" : "ok", results.back().reused ? " (cached tables)" : "");
+    }
+  }
+  write_report(suite, results, o);
+  return failures;
+}
+
+}  // namespace mcref

@@ -1,0 +1,50 @@
+#pragma once
+// A validation suite (TOML): cases, each an experiment (+ overrides) and the
+// model checks to run on its tables. `run_suite` simulates what is missing or
+// stale (cached tables are reused when their stored config equals the
+// case's effective config), evaluates the models, writes
+//   OUTDIR/tables/<case>.h5   the simulated tables
+//   OUTDIR/results.json       every check: metrics, verdicts, model values per cell
+//   OUTDIR/plots/<case>.png   one figure per case (scripts/plot_validation.py)
+//   OUTDIR/report.html        summary table, plots, provenance
+// and returns the number of failed checks.
+#include <string>
+#include <vector>
+
+#include "sim/config/experiment.h"
+
+namespace mcref {
+
+struct Check {
+  std::string table;  // table name in the case's file
+  std::string model;  // see models_for()
+  double tolerance = 0;  // approximate models: max relative error allowed (0: measured only)
+};
+
+struct Case {
+  std::string name, figure, description;
+  std::string experiment_path;     // resolved against the suite file's directory
+  std::vector<std::string> sets;   // --set style overrides
+  std::vector<Check> checks;       // empty: every model of every table, measured
+};
+
+struct Suite {
+  std::string file, name, title;
+  double significance = 1e-3;  // alpha for exact models
+  std::vector<Case> cases;
+};
+
+Suite load_suite(const std::string& path);
+
+struct SuiteOptions {
+  std::string out_dir;
+  int threads = 0;
+  bool quiet = false;
+  bool force = false;  // re-simulate even when cached tables are current
+  std::string command_line;
+  std::string scripts_dir;  // where plot_validation.py lives
+};
+
+int run_suite(const Suite& suite, const SuiteOptions& options);
+
+}  // namespace mcref
