@@ -28,7 +28,7 @@ X_AXIS = {"p1": "r", "ndf": "theta_m", "tau_plus": "theta_i", "tau_height": "h",
           "g1": "theta_i", "g1_conditional": "theta_m", "vndf": "theta_m",
           "pore_visibility": "theta_o", "pore_visibility_independent": "theta_o"}
 MAX_SERIES = 6
-STYLES = ["-", "--", ":", "-."]
+STYLES = ["-", "--", ":", "-.", (0, (5, 1)), (0, (3, 1, 1, 1, 1, 1))]
 
 
 def load_table(group):

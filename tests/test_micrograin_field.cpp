@@ -459,3 +459,77 @@ TEST(MicrograinFieldNeighbours, InsideOtherGrainMatchesBruteForce) {
     EXPECT_GT(inside, 100) << c.label;
   }
 }
+
+// A ray leaving a grain from 1e-7 radius outside its surface must not report
+// that grain at t = 0 (its double-precision roots both lie behind the origin).
+// 2000 rays per field, seed 91. (Fails at a83dc91: see the report; trace()
+// clamps a behind-the-origin root to t = 0 instead of skipping the hit.)
+TEST(MicrograinFieldTrace, RaysLeavingFromJustOutsideASurfaceDoNotHitItAtZero) {
+  for (const Case& c : kCases) {
+    const MicrograinField f(geometry_of(c), c.seed);
+    Rng rng(91 + c.seed);
+    const double eps = 1e-7 * f.geometry().radius;
+    const int bad = count_mismatches(f, 2000, [&](Vec3& o, Vec3& d) {
+      const std::size_t k = rng.below(f.grain_count());
+      const double z = 0.01 + 0.99 * rng.uniform(), s = std::sqrt(1 - z * z), p = 2 * kPi * rng.uniform();
+      const Vec3 n{s * std::cos(p), s * std::sin(p), z};
+      const Vec3 normal = f.normal_from_unit(n);
+      o = f.from_unit(f.unit_centre(k) + n) + normal * eps;
+      do {
+        d = random_down(rng, 0.0);
+        if (dot(d, normal) < 0) d = -d;
+      } while (std::fabs(d.z) < 0.05);
+    }, std::string(c.label) + " (origin 1e-7 outside a grain)");
+    EXPECT_EQ(bad, 0) << c.label;
+  }
+}
+
+// occluded_unit from a point of grain k lying 1e-6..5e-5 (unit space)
+// outside an overlapping neighbour j, toward j: the ray enters j at once, so
+// the point is occluded. 300 such points per field, seed 95. (Fails at
+// a83dc91: the self-hit skip t_near = tfar + kSkip steps over hits closer
+// than kSkip = 1e-4.)
+TEST(MicrograinFieldTrace, OccludedSeesANeighbourJustAheadOfTheStartGrain) {
+  for (const Case& c : kCases) {
+    const MicrograinField f(geometry_of(c), c.seed);
+    const MicrograinGeometry& g = f.geometry();
+    const double sx = f.unit_side_x(), sy = f.unit_side_y();
+    Rng rng(95 + c.seed);
+    int tried = 0, bad = 0;
+    for (int attempt = 0; attempt < 200000 && tried < 300; ++attempt) {
+      const std::size_t k = rng.below(f.grain_count()), j = rng.below(f.grain_count());
+      if (j == k) continue;
+      Vec3 cj = f.unit_centre(j) - f.unit_centre(k);
+      cj.x -= sx * std::round(cj.x / sx);
+      cj.y -= sy * std::round(cj.y / sy);
+      const double dist = std::hypot(cj.x, cj.y);
+      if (dist > 1.9 || dist < 0.1) continue;
+      // A point of sphere k at distance s from centre j: on the circle
+      // (p - c_k).u = a, radius sqrt(1 - a^2), above the base.
+      const double s = 1 + 1e-6 + 4.9e-5 * rng.uniform();
+      const double a = (1 + dist * dist - s * s) / (2 * dist);
+      const Vec3 u{cj.x / dist, cj.y / dist, 0}, v{-u.y, u.x, 0};
+      const double psi = kPi * (0.05 + 0.9 * rng.uniform()), rc = std::sqrt(1 - a * a);
+      const Vec3 n = u * a + v * (rc * std::cos(psi)) + Vec3{0, 0, rc * std::sin(psi)};
+      const Vec3 p = f.unit_centre(k) + n;
+      if (f.inside_other_grain(p, k)) continue;  // buried in a third grain
+      // Unit-space direction leaving k, entering j, upward.
+      const Vec3 q = n - cj;  // p relative to centre j
+      Vec3 d;
+      int tries = 0;
+      do {
+        d = -random_down(rng, 0.05);
+      } while ((dot(d, n) <= 0 || dot(d, q) >= 0) && ++tries < 1000);
+      if (tries >= 1000) continue;
+      ++tried;
+      const Vec3 d_real = normalize(Vec3{d.x * g.r_x(), d.y * g.r_y(), d.z * g.c()});
+      const Reference ref = brute_force(f, f.from_unit(p) + d_real * 1e-9, d_real);
+      ASSERT_NE(ref.kind, Hit::Kind::Escape) << c.label << ": construction error";
+      if (!f.occluded_unit(p, d, static_cast<std::uint32_t>(k)) && ++bad <= 3)
+        ADD_FAILURE() << c.label << ": not occluded, but grain " << ref.grain << " is hit at t = " << ref.t
+                      << " (real) from grain " << k << ": " << describe(f.from_unit(p), d_real);
+    }
+    EXPECT_GE(tried, 100) << c.label;
+    EXPECT_EQ(bad, 0) << c.label << ": " << bad << " of " << tried << " points wrongly unoccluded";
+  }
+}

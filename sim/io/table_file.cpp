@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mcref_commit.h"  // generated at build time
 #include "sim/config/config_error.h"
 
 namespace mcref {
