@@ -71,7 +71,7 @@ def plot_table(ax, quantity, axes, value, stderr, models):
         ax.errorbar(xs, value[sl], yerr=stderr[sl], fmt="o", ms=3, color=c, capsize=2,
                     label=("sim " + label).strip())
         for m, (mname, mvals) in enumerate(models):
-            ax.plot(xs, mvals[sl], STYLES[m % len(STYLES)], color=c, lw=1.2,
+            ax.plot(xs, mvals[sl], linestyle=STYLES[m % len(STYLES)], color=c, lw=1.2,
                     label=mname if s == 0 else None)
     ax.set_xlabel(xname + (" (deg)" if xdeg else ""))
     ax.set_ylabel(quantity)

@@ -486,9 +486,9 @@ TEST(MicrograinFieldTrace, RaysLeavingFromJustOutsideASurfaceDoNotHitItAtZero) {
 
 // occluded_unit from a point of grain k lying 1e-6..5e-5 (unit space)
 // outside an overlapping neighbour j, toward j: the ray enters j at once, so
-// the point is occluded. 300 such points per field, seed 95. (Fails at
-// a83dc91: the self-hit skip t_near = tfar + kSkip steps over hits closer
-// than kSkip = 1e-4.)
+// the point is occluded. 300 such points per field, seed 95. (Embree reports
+// the start grain itself first in about half of them; the self-hit skip of
+// kSkip = 1e-4 must not lose the neighbour.)
 TEST(MicrograinFieldTrace, OccludedSeesANeighbourJustAheadOfTheStartGrain) {
   for (const Case& c : kCases) {
     const MicrograinField f(geometry_of(c), c.seed);
@@ -519,7 +519,7 @@ TEST(MicrograinFieldTrace, OccludedSeesANeighbourJustAheadOfTheStartGrain) {
       int tries = 0;
       do {
         d = -random_down(rng, 0.05);
-      } while ((dot(d, n) <= 0 || dot(d, q) >= 0) && ++tries < 1000);
+      } while ((dot(d, n) <= 0 || dot(d, q) > -0.05 * length(q)) && ++tries < 1000);  // well inside j's silhouette
       if (tries >= 1000) continue;
       ++tried;
       const Vec3 d_real = normalize(Vec3{d.x * g.r_x(), d.y * g.r_y(), d.z * g.c()});

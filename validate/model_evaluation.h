@@ -1,11 +1,13 @@
 #pragma once
-// Evaluates the analytic micrograin models on the cells of a simulated
-// table, as the simulation measures them: bin averages over binned axes
-// (with the same weighting the estimator applies), point values on point axes.
+// Evaluates the analytic models on the cells of a simulated table, as the
+// simulation measures them: bin averages over binned axes (with the same
+// weighting the estimator applies), point values on point axes.
+// Models come in families, one file each (validate/<family>_models.cpp).
+#include <functional>
 #include <string>
 #include <vector>
 
-#include "sim/geometry/micrograin_field.h"
+#include "sim/config/experiment.h"
 #include "sim/tally/table.h"
 
 namespace mcref {
@@ -13,15 +15,33 @@ namespace mcref {
 struct ModelInfo {
   std::string name;         // e.g. "tau_plus_eq22"
   std::string quantity;     // table quantity it predicts
-  bool exact;               // exact for a Poisson grain field (disagreement = a bug)
+  bool exact;               // exact for the simulated geometry (disagreement = a bug)
   std::string description;  // what it is, with equation numbers
+  std::string kind;         // geometry kind it applies to ("micrograin", "slab", "spheres")
+  // Optional: which table component it predicts (e.g. "order1_grain"); empty = any.
+  std::string component = "";
 };
 
-// All models known for a table quantity (empty if none).
-std::vector<ModelInfo> models_for(const std::string& quantity);
-const ModelInfo* find_model(const std::string& name);
 // Model values on the cells of `table` (same layout as table.values()).
+using ModelEvaluator = std::function<std::vector<double>(const std::string& model, const Table&, const Experiment&)>;
+
+struct ModelFamily {
+  std::vector<ModelInfo> models;
+  ModelEvaluator evaluate;
+};
+
+// The families (each defined in its own file).
+const ModelFamily& micrograin_geometry_models();
+const ModelFamily& micrograin_brdf_models();
+const ModelFamily& slab_models();
+const ModelFamily& sphere_models();
+
+// All models of a table quantity for a geometry kind (empty if none).
+std::vector<ModelInfo> models_for(const std::string& quantity, const std::string& kind = "micrograin");
+const ModelInfo* find_model(const std::string& name);
 // Throws std::invalid_argument for a model that does not fit the table.
+std::vector<double> evaluate_model(const std::string& model, const Table& table, const Experiment& experiment);
+// Micrograin geometry statistics only (kept for tests that build a geometry directly).
 std::vector<double> evaluate_model(const std::string& model, const Table& table, const MicrograinGeometry& geometry);
 
 }  // namespace mcref

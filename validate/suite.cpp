@@ -132,8 +132,10 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
     std::vector<Check> checks = c.checks;
     if (checks.empty())
       for (const Table& t : f.tables)
-        for (const ModelInfo& m : models_for(t.quantity))
-          if (!(ex.micrograin.anisotropic() &&
+        for (const ModelInfo& m : models_for(t.quantity, ex.kind))
+          if (!m.component.empty() && (t.attributes.count("component") == 0 || t.attributes.at("component") != m.component))
+            continue;
+          else if (!(ex.kind == "micrograin" && ex.micrograin.anisotropic() &&
                 (m.name == "ndf_ggx_alpha_tilde" || m.name == "g1_smith_series_n4" || m.name == "g1_smith_ggx_alpha_tilde")))
             checks.push_back({t.name, m.name, 0.0});
     for (const Check& chk : checks) {
@@ -147,7 +149,7 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
       r.exact = info->exact;
       r.model_description = info->description;
       r.tolerance = chk.tolerance;
-      r.model_values = evaluate_model(chk.model, *t, ex.micrograin);
+      r.model_values = evaluate_model(chk.model, *t, ex);
       r.comparison = compare(t->values(), t->stderrs(), r.model_values, t->batches);
       r.verdict = judge(r.comparison, info->exact, suite.significance, chk.tolerance);
       if (r.verdict.status == "FAIL") ++failures;

@@ -5,7 +5,7 @@
 #include <limits>
 #include <sstream>
 
-#include "sim/config/toml_reader.h"
+#include "sim/config/experiment_parts.h"
 #include "sim/core/vec.h"
 
 namespace mcref {
@@ -22,9 +22,18 @@ std::vector<double> to_radians(std::vector<double> v) {
 
 void read_geometry(TomlReader& root, Experiment& e) {
   const toml::table* t = root.table("geometry");
-  if (!t) root.fail("geometry", "is required ([geometry] table with kind = \"micrograin\")");
+  if (!t) root.fail("geometry", "is required ([geometry] table with kind = \"micrograin\", \"slab\" or \"spheres\")");
   TomlReader g(*t, e.file, "geometry");
-  e.kind = g.string("kind", {"micrograin"});
+  e.kind = g.string("kind", {"micrograin", "slab", "spheres"});
+  if (e.kind == "micrograin") read_micrograin_geometry(g, e);
+  else if (e.kind == "slab") read_slab_geometry(g, e);
+  else read_spheres_geometry(g, e);
+  g.finish();
+}
+
+}  // namespace
+
+void read_micrograin_geometry(TomlReader& g, Experiment& e) {
   MicrograinGeometry& m = e.micrograin;
   m.tau0 = g.number("tau0", {0, 1, true, true});
   const Range beta_range{0, 100, true, false};
@@ -37,18 +46,25 @@ void read_geometry(TomlReader& root, Experiment& e) {
   } else {
     g.fail("beta", "is required (or beta_x and beta_y), a number in " + beta_range.text());
   }
+  e.isotropic = !m.anisotropic();
   m.radius = g.number("radius", {0, kInf, true, true}, 1.0);
   // The tile must hold the grains' footprints with room to spare (> 2 diameters).
   const double min_tile = 4.0 * std::fmax(m.r_x(), m.r_y()) / m.radius;
-  std::ostringstream lo;
-  lo << "(" << min_tile << ", 1e5]";
   m.tile = g.number("tile", {min_tile, 1e5, true, false}, 200.0);
   // Grain count must stay reasonable (about 1e8 at most).
   const double expected = m.unit_density() * (m.tile * m.radius / m.r_x()) * (m.tile * m.radius / m.r_y());
   if (expected > 1e8) g.fail("tile", "gives ~" + std::to_string(static_cast<long long>(expected)) +
                                          " grains; at most 1e8 are allowed");
-  g.finish();
 }
+
+const std::vector<std::string>& known_quantities(const std::string& kind) {
+  static const std::vector<std::string> micrograin{"p1", "ndf", "tau_plus", "tau_height", "g1", "pore_visibility", "vndf", "brdf"};
+  static const std::vector<std::string> slab{"brdf"};
+  static const std::vector<std::string> spheres{"brdf", "phase"};
+  return kind == "micrograin" ? micrograin : kind == "slab" ? slab : spheres;
+}
+
+namespace {
 
 void read_run(TomlReader& root, Experiment& e) {
   const toml::table* t = root.table("run");
@@ -63,11 +79,11 @@ void read_run(TomlReader& root, Experiment& e) {
 Measure read_measure(const toml::table& t, const Experiment& e, std::size_t index) {
   TomlReader m(t, e.file, "measure." + std::to_string(index));
   Measure out;
-  out.quantity = m.string("quantity", known_quantities());
+  out.quantity = m.string("quantity", known_quantities(e.kind));
   out.name = m.any_string("name", out.quantity);
   const Range theta{0, 90, false, true}, azimuth{-360, 360, false, false};
   const Range positive_theta{0, 90, false, true};
-  const bool aniso = e.micrograin.anisotropic();
+  const bool aniso = !e.isotropic;
   out.samples = m.integer("samples", 1, kMaxCount);
   const std::string& q = out.quantity;
   if (q == "p1") {
@@ -76,6 +92,14 @@ Measure read_measure(const toml::table& t, const Experiment& e, std::size_t inde
   } else if (q == "ndf") {
     out.theta_m_bins = static_cast<int>(m.integer("theta_m_bins", 1, 10000, 45));
     out.phi_m_bins = static_cast<int>(m.integer("phi_m_bins", 1, 10000, aniso ? 36 : 1));
+  } else if (q == "brdf") {
+    out.theta_i = to_radians(m.numbers("theta_i_deg", theta));
+    out.phi_i = to_radians(m.numbers("phi_i_deg", azimuth, std::vector<double>{0.0}));
+    out.theta_o_bins = static_cast<int>(m.integer("theta_o_bins", 1, 10000, 16));
+    out.phi_bins = static_cast<int>(m.integer("phi_bins", 1, 10000, aniso ? 36 : 18));
+    out.max_order = static_cast<int>(m.integer("max_order", 0, 1000000, 0));
+  } else if (q == "phase") {
+    out.mu_bins = static_cast<int>(m.integer("mu_bins", 1, 100000, 50));
   } else if (q == "pore_visibility") {
     out.theta_i = to_radians(m.numbers("theta_i_deg", theta));
     out.phi_i = to_radians(m.numbers("phi_i_deg", azimuth, std::vector<double>{0.0}));
@@ -115,6 +139,7 @@ Experiment parse_experiment(const std::string& text, const std::string& file,
   e.text = canonical.str();
   TomlReader r(root, file, "");
   read_geometry(r, e);
+  if (e.kind == "micrograin") read_micrograin_materials(r.table("material"), e);
   read_run(r, e);
   const auto measures = r.tables("measure");
   if (measures.empty()) r.fail("measure", "at least one [[measure]] table is required");

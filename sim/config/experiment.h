@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "sim/geometry/micrograin_field.h"
+#include "sim/geometry/slab.h"
+#include "sim/geometry/sphere_packing.h"
 
 namespace mcref {
 
@@ -21,6 +23,9 @@ struct Measure {
   std::string name;      // table name in the output file (defaults to quantity)
   std::vector<double> theta_i, phi_i;  // incident directions
   std::vector<double> theta_o, phi;    // pore_visibility: outgoing directions, relative azimuths
+  int theta_o_bins = 0, phi_bins = 0;  // brdf: outgoing bins (equal solid angle)
+  int max_order = 0;                   // brdf: 0 = unlimited (unbiased Russian roulette)
+  int mu_bins = 0;                     // phase: bins of the deflection cosine
   int theta_m_bins = 0, phi_m_bins = 0;  // normal-space bins
   int r_bins = 0;                        // p1
   double r_max = 0;                      // p1, in grain radii
@@ -31,16 +36,17 @@ struct Measure {
 struct Experiment {
   std::string file;  // where it came from (for messages)
   std::string text;  // the effective configuration (after --set), stored as provenance
-  std::string kind;  // geometry kind: "micrograin"
+  std::string kind;  // geometry kind: "micrograin", "slab" or "spheres"
   MicrograinGeometry micrograin;
+  SlabGeometry slab;
+  SpherePacking spheres;
+  bool isotropic = true;  // the sample's statistics are symmetric in azimuth
   RunSettings run;
   std::vector<Measure> measures;
 };
 
-inline const std::vector<std::string>& known_quantities() {
-  static const std::vector<std::string> q{"p1", "ndf", "tau_plus", "tau_height", "g1", "pore_visibility", "vndf"};
-  return q;
-}
+// The quantities a geometry kind can measure.
+const std::vector<std::string>& known_quantities(const std::string& kind);
 
 // Parses and validates; `overrides` are --set key=value assignments.
 Experiment parse_experiment(const std::string& text, const std::string& file,

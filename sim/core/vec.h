@@ -40,5 +40,12 @@ inline double spherical_phi(Vec3 d) {
   return p < 0 ? p + 2 * kPi : p;
 }
 inline double deg_to_rad(double d) { return d * kPi / 180.0; }
+// Relative azimuth phi - phi_ref in [0, 2pi), or folded into [0, pi].
+inline double relative_azimuth(double phi, double phi_ref, bool folded) {
+  double d = std::fmod(phi - phi_ref, 2 * kPi);
+  if (d < 0) d += 2 * kPi;
+  if (folded && d > kPi) d = 2 * kPi - d;
+  return d;
+}
 
 }  // namespace mcref

@@ -38,12 +38,6 @@ double cell_projected_solid_angle(double t0, double t1, double p0, double p1) {
   return 0.5 * (s1 * s1 - s0 * s0) * (p1 - p0);
 }
 
-double relative_azimuth(double phi, double phi_ref, bool folded) {
-  double d = std::fmod(phi - phi_ref, 2 * kPi);
-  if (d < 0) d += 2 * kPi;
-  if (folded && d > kPi) d = 2 * kPi - d;
-  return d;
-}
 
 // The registry; each estimator lives in its own file.
 Estimator p1_estimator();
@@ -53,6 +47,7 @@ Estimator tau_height_estimator();
 Estimator g1_estimator();
 Estimator pore_visibility_estimator();
 Estimator vndf_estimator();
+Estimator micrograin_brdf_estimator();
 
 const Estimator& estimator_for(const std::string& quantity) {
   static const std::map<std::string, Estimator> registry{
@@ -63,6 +58,7 @@ const Estimator& estimator_for(const std::string& quantity) {
       {"g1", g1_estimator()},
       {"pore_visibility", pore_visibility_estimator()},
       {"vndf", vndf_estimator()},
+      {"brdf", micrograin_brdf_estimator()},
   };
   const auto it = registry.find(quantity);
   if (it == registry.end()) throw std::invalid_argument("no estimator for quantity " + quantity);

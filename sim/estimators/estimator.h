@@ -32,11 +32,12 @@ inline constexpr std::uint64_t kChunkSamples = 4096;
 Sums run_chunks(std::uint64_t samples, std::size_t sums_size, std::uint64_t key,
                 const std::function<void(Rng&, std::uint64_t count, Sums&)>& body);
 
-// An estimator creates its (empty) tables from the measure, and adds one
-// batch to each of them per realization of the field.
+// A micrograin estimator creates its (empty) tables from the measure, and
+// adds one batch to each of them per realization of the field.
 struct Estimator {
-  std::function<std::vector<Table>(const Measure&, const MicrograinGeometry&)> make_tables;
-  std::function<void(const MicrograinField&, const Measure&, const StreamKey&, std::vector<Table>&)> add_batch;
+  std::function<std::vector<Table>(const Measure&, const Experiment&)> make_tables;
+  std::function<void(const MicrograinField&, const Experiment&, const Measure&, const StreamKey&, std::vector<Table>&)>
+      add_batch;
 };
 const Estimator& estimator_for(const std::string& quantity);
 
@@ -62,7 +63,5 @@ Axis phi_bins(const std::string& name, int n, bool folded);
 // Solid angle and cosine-weighted solid angle of a (theta, phi) cell.
 double cell_solid_angle(double t0, double t1, double p0, double p1);
 double cell_projected_solid_angle(double t0, double t1, double p0, double p1);
-// Relative azimuth phi - phi_ref, in [0, 2pi), or folded into [0, pi].
-double relative_azimuth(double phi, double phi_ref, bool folded);
 
 }  // namespace mcref

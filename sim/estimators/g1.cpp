@@ -15,7 +15,8 @@ namespace mcref {
 
 Estimator g1_estimator() {
   Estimator e;
-  e.make_tables = [](const Measure& m, const MicrograinGeometry& g) {
+  e.make_tables = [](const Measure& m, const Experiment& ex) {
+    const MicrograinGeometry& g = ex.micrograin;
     const bool folded = !g.anisotropic();
     Table marginal(m.name, "g1", {theta_points("theta_i", m.theta_i), phi_points("phi_i", m.phi_i)});
     marginal.units = "1";
@@ -28,7 +29,7 @@ Estimator g1_estimator() {
     conditional.attributes["empty_cells"] = "NaN where a batch had no sample in the cell";
     return std::vector<Table>{marginal, conditional};
   };
-  e.add_batch = [](const MicrograinField& f, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {
+  e.add_batch = [](const MicrograinField& f, const Experiment&, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {
     const Axis& th = tables[1].axes[2];
     const Axis& ph = tables[1].axes[3];
     const bool folded = !f.geometry().anisotropic();

@@ -9,13 +9,13 @@ namespace mcref {
 
 Estimator ndf_estimator() {
   Estimator e;
-  e.make_tables = [](const Measure& m, const MicrograinGeometry&) {
+  e.make_tables = [](const Measure& m, const Experiment&) {
     Table t(m.name, "ndf", {theta_bins("theta_m", m.theta_m_bins), phi_bins("phi_m", m.phi_m_bins, false)});
     t.units = "1/sr";
     t.description = "NDF D(m), cosine-weighted bin average, normalised over the grain-covered area (Eq. 14)";
     return std::vector<Table>{t};
   };
-  e.add_batch = [](const MicrograinField& f, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {
+  e.add_batch = [](const MicrograinField& f, const Experiment&, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {
     const Axis& th = tables[0].axes[0];
     const Axis& ph = tables[0].axes[1];
     const std::size_t cells = th.size() * ph.size();

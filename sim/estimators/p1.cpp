@@ -7,13 +7,13 @@ namespace mcref {
 
 Estimator p1_estimator() {
   Estimator e;
-  e.make_tables = [](const Measure& m, const MicrograinGeometry&) {
+  e.make_tables = [](const Measure& m, const Experiment&) {
     Table t(m.name, "p1", {Axis::uniform_bins("r", "grain radius", 0.0, m.r_max, m.r_bins)});
     t.units = "1/grain radius";
     t.description = "density of the distance from a uniform point to the closest grain centre (bin average)";
     return std::vector<Table>{t};
   };
-  e.add_batch = [](const MicrograinField& f, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {
+  e.add_batch = [](const MicrograinField& f, const Experiment&, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {
     const Axis& r = tables[0].axes[0];
     const Sums counts = run_chunks(m.samples, r.size(), key.with(0), [&](Rng& rng, std::uint64_t n, Sums& acc) {
       for (std::uint64_t s = 0; s < n; ++s) {

@@ -11,7 +11,7 @@ namespace mcref {
 
 Estimator pore_visibility_estimator() {
   Estimator e;
-  e.make_tables = [](const Measure& m, const MicrograinGeometry&) {
+  e.make_tables = [](const Measure& m, const Experiment&) {
     std::vector<Axis> axes{theta_points("theta_i", m.theta_i), theta_points("theta_o", m.theta_o), phi_points("phi", m.phi)};
     Table joint(m.name, "pore_visibility", axes);
     joint.units = "1";
@@ -27,7 +27,7 @@ Estimator pore_visibility_estimator() {
     product.description = "P(visible from i | pore) * P(visible from o | pore), per batch (the independence assumption of Eq. 23)";
     return std::vector<Table>{joint, product};
   };
-  e.add_batch = [](const MicrograinField& f, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {
+  e.add_batch = [](const MicrograinField& f, const Experiment&, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {
     const double phi_i = m.phi_i.front();
     // Distinct directions: the incident ones, then (theta_o, phi) pairs.
     std::vector<Vec3> dirs;

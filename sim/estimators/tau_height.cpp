@@ -8,7 +8,7 @@ namespace mcref {
 
 Estimator tau_height_estimator() {
   Estimator e;
-  e.make_tables = [](const Measure& m, const MicrograinGeometry&) {
+  e.make_tables = [](const Measure& m, const Experiment&) {
     std::vector<double> h(m.h_points);
     for (int k = 0; k < m.h_points; ++k) h[k] = static_cast<double>(k) / m.h_points;
     Table t(m.name, "tau_height",
@@ -17,7 +17,7 @@ Estimator tau_height_estimator() {
     t.description = "fraction of rays from i whose first hit is a grain at height >= h (h in units of c)";
     return std::vector<Table>{t};
   };
-  e.add_batch = [](const MicrograinField& f, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {
+  e.add_batch = [](const MicrograinField& f, const Experiment&, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {
     const std::vector<double>& h = tables[0].axes[2].values;
     std::vector<double> est;
     std::uint64_t dir = 0;

@@ -6,13 +6,13 @@ namespace mcref {
 
 Estimator tau_plus_estimator() {
   Estimator e;
-  e.make_tables = [](const Measure& m, const MicrograinGeometry&) {
+  e.make_tables = [](const Measure& m, const Experiment&) {
     Table t(m.name, "tau_plus", {theta_points("theta_i", m.theta_i), phi_points("phi_i", m.phi_i)});
     t.units = "1";
     t.description = "visible filling factor: fraction of rays from i whose first hit is a grain";
     return std::vector<Table>{t};
   };
-  e.add_batch = [](const MicrograinField& f, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {
+  e.add_batch = [](const MicrograinField& f, const Experiment&, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {
     std::vector<double> est;
     std::uint64_t dir = 0;
     for (double theta : m.theta_i)

@@ -7,7 +7,8 @@ namespace mcref {
 
 Estimator vndf_estimator() {
   Estimator e;
-  e.make_tables = [](const Measure& m, const MicrograinGeometry& g) {
+  e.make_tables = [](const Measure& m, const Experiment& ex) {
+    const MicrograinGeometry& g = ex.micrograin;
     const bool folded = !g.anisotropic();
     Table t(m.name, "vndf",
             {theta_points("theta_i", m.theta_i), phi_points("phi_i", m.phi_i), theta_bins("theta_m", m.theta_m_bins),
@@ -17,7 +18,7 @@ Estimator vndf_estimator() {
     t.attributes["phi_m_rel"] = folded ? "phi_m - phi_i folded into [0, pi] (isotropic field)" : "phi_m - phi_i in [0, 2pi)";
     return std::vector<Table>{t};
   };
-  e.add_batch = [](const MicrograinField& f, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {
+  e.add_batch = [](const MicrograinField& f, const Experiment&, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {
     const Axis& th = tables[0].axes[2];
     const Axis& ph = tables[0].axes[3];
     const bool folded = !f.geometry().anisotropic();

@@ -17,8 +17,8 @@
 //                      sets the "ratio" counter = estimator rays/s / bare rays/s.
 // 2. Build time and resident-memory increase of a 10^6-grain field
 //    (tau0 = 0.5, beta = 1, tile chosen so the expected count is 10^6).
-// 3. Rays/s of tau_plus (and bare) and g1 on that field and on a tile-200
-//    field with the same parameters (BVH size effects).
+// 3. Rays/s of tau_plus (estimator, trace, bare, pair) and g1 on that field
+//    and on a tile-200 field with the same parameters (BVH size effects).
 //
 // A summary table with the ratios is printed after the benchmarks.
 #include <benchmark/benchmark.h>
@@ -35,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include <malloc.h>
 #include <unistd.h>
 
 #include "sim/core/vec.h"
@@ -122,6 +123,17 @@ Measure make_measure(const std::string& quantity, double theta_deg, std::uint64_
   return m;
 }
 
+// The (micrograin) experiment an estimator sees for field f; one per field.
+const Experiment& experiment_of(const MicrograinField& f) {
+  static std::map<const MicrograinField*, std::unique_ptr<Experiment>> cache;
+  auto& ex = cache[&f];
+  if (!ex) ex = std::make_unique<Experiment>();
+  ex->kind = "micrograin";
+  ex->micrograin = f.geometry();  // (refreshed: a rebuilt field may reuse an address)
+  ex->isotropic = !f.geometry().anisotropic();
+  return *ex;
+}
+
 // The unit-space ray direction an estimator uses for its first direction.
 Vec3 ray_direction(const MicrograinField& f, const std::string& quantity, double theta_deg) {
   if (quantity == "ndf") return unit_direction(f, {0, 0, -1});
@@ -135,8 +147,9 @@ double run_batch(Path path, const MicrograinField& f, const std::string& quantit
   if (path == Path::Estimator) {
     const Estimator& e = estimator_for(quantity);
     const Measure m = make_measure(quantity, theta_deg, samples);
-    std::vector<Table> tables = e.make_tables(m, f.geometry());
-    e.add_batch(f, m, kKey, tables);
+    const Experiment& ex = experiment_of(f);
+    std::vector<Table> tables = e.make_tables(m, ex);
+    e.add_batch(f, ex, m, kKey, tables);
     return tables[0].sum.empty() ? 0.0 : tables[0].sum[0] * static_cast<double>(samples);
   }
   const Vec3 d = ray_direction(f, quantity, theta_deg);
@@ -196,7 +209,8 @@ void bm_rays(benchmark::State& state, FieldFn field_fn, std::string quantity, Pa
 }
 
 // Estimator and bare alternated in every iteration; the ratio is of the summed times.
-void bm_pair(benchmark::State& state, FieldFn field_fn, std::string quantity, double theta_deg, int threads) {
+void bm_pair(benchmark::State& state, FieldFn field_fn, std::string quantity, double theta_deg, int threads,
+             std::uint64_t samples) {
   const MicrograinField& f = field_fn();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   using clock = std::chrono::steady_clock;
@@ -206,14 +220,14 @@ void bm_pair(benchmark::State& state, FieldFn field_fn, std::string quantity, do
     for (int k = 0; k < 2; ++k) {
       const bool est = (k == 0) == est_first;
       const auto t0 = clock::now();
-      const double h = run_batch(est ? Path::Estimator : Path::Bare, f, quantity, theta_deg, kRays);
+      const double h = run_batch(est ? Path::Estimator : Path::Bare, f, quantity, theta_deg, samples);
       const double dt = std::chrono::duration<double>(clock::now() - t0).count();
       (est ? t_est : t_bare) += dt;
       (est ? h_est : h_bare) += h;
     }
     est_first = !est_first;
   }
-  const double rays = static_cast<double>(kRays) * static_cast<double>(state.iterations());
+  const double rays = static_cast<double>(samples) * static_cast<double>(state.iterations());
   state.counters["est_rays/s"] = rays / t_est;
   state.counters["bare_rays/s"] = rays / t_bare;
   state.counters["ratio"] = t_bare / t_est;
@@ -231,6 +245,7 @@ void bm_build(benchmark::State& state, int threads, bool keep) {
   for (auto _ : state) {
     state.PauseTiming();
     if (keep) g_big.reset();
+    malloc_trim(0);  // hand freed heap back, so that RSS counts only this field
     const long rss0 = status_kib("VmRSS");
     peak_ok = reset_peak_rss() && peak_ok;
     const long hwm0 = status_kib("VmHWM");
@@ -283,9 +298,9 @@ std::string rays_name(const std::string& prefix, const std::string& q, Path p, d
                 threads);
   return buf;
 }
-std::string pair_name(const std::string& q, double theta, int threads) {
+std::string pair_name(const std::string& q, double theta, int threads, const std::string& prefix = "") {
   char buf[160];
-  std::snprintf(buf, sizeof buf, "pair/%s/theta:%g/threads:%d", q.c_str(), theta, threads);
+  std::snprintf(buf, sizeof buf, "%spair/%s/theta:%g/threads:%d", prefix.c_str(), q.c_str(), theta, threads);
   return buf;
 }
 
@@ -316,16 +331,20 @@ int main(int argc, char** argv) {
   for (const Case& c : item1)
     for (int t : thread_counts)
       benchmark::RegisterBenchmark(pair_name(c.quantity, c.theta, t).c_str(), bm_pair, &realistic_field,
-                                   c.quantity, c.theta, t)
+                                   c.quantity, c.theta, t, kRays)
           ->MinTime(2 * kMinTime)->UseRealTime()->Unit(benchmark::kMillisecond);
 
   // 3. BVH size: tile 200 vs 10^6 grains, same tau0 = 0.5, beta = 1; 2 threads.
   for (const auto& fld : {std::pair<std::string, FieldFn>{"tile200/", &small_field}, {"1e6/", &big_field}}) {
-    for (double theta : {0.0, 60.0, 85.0})
-      for (Path p : {Path::Estimator, Path::Bare})
+    for (double theta : {0.0, 60.0, 85.0}) {
+      for (Path p : {Path::Estimator, Path::Trace, Path::Bare})
         benchmark::RegisterBenchmark(rays_name(fld.first, "tau_plus", p, theta, 2).c_str(), bm_rays, fld.second,
                                      std::string("tau_plus"), p, theta, 2, kBigRays)
             ->MinTime(kMinTime)->UseRealTime()->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(pair_name("tau_plus", theta, 2, fld.first).c_str(), bm_pair, fld.second,
+                                   std::string("tau_plus"), theta, 2, kBigRays)
+          ->MinTime(2 * kMinTime)->UseRealTime()->Unit(benchmark::kMillisecond);
+    }
     benchmark::RegisterBenchmark(rays_name(fld.first, "g1", Path::Estimator, 60, 2).c_str(), bm_rays, fld.second,
                                  std::string("g1"), Path::Estimator, 60.0, 2, kBigRays)
         ->MinTime(kMinTime)->UseRealTime()->Unit(benchmark::kMillisecond);
@@ -360,15 +379,21 @@ int main(int argc, char** argv) {
     std::printf("%s: grains %.0f, build %.2f s (target < 10), RSS +%.0f MiB, peak +%.0f MiB (target < 1024)\n", name,
                 reporter.get(name, "grains"), reporter.get(name, "build_s"), reporter.get(name, "rss_MiB"),
                 reporter.get(name, "peak_MiB"));
-  std::printf("%-22s %10s %10s %10s %10s\n", "tau_plus (2 thr)", "tile200", "1e6", "1e6/t200", "");
-  for (double theta : {0.0, 60.0, 85.0})
-    for (Path p : {Path::Estimator, Path::Bare}) {
+  std::printf("%-22s %10s %10s %10s   (M rays/s; beta = 1, 2 threads)\n", "tau_plus", "tile200", "1e6", "1e6/t200");
+  for (double theta : {0.0, 60.0, 85.0}) {
+    for (Path p : {Path::Estimator, Path::Trace, Path::Bare}) {
       const double s = reporter.get(rays_name("tile200/", "tau_plus", p, theta, 2), "rays/s");
       const double l = reporter.get(rays_name("1e6/", "tau_plus", p, theta, 2), "rays/s");
       char label[64];
       std::snprintf(label, sizeof label, "theta=%g %s", theta, path_name(p));
       std::printf("%-22s %10.3f %10.3f %10.3f\n", label, s / 1e6, l / 1e6, l / s);
     }
+    const double s = reporter.get(pair_name("tau_plus", theta, 2, "tile200/"), "ratio");
+    const double l = reporter.get(pair_name("tau_plus", theta, 2, "1e6/"), "ratio");
+    char label[64];
+    std::snprintf(label, sizeof label, "theta=%g pair ratio", theta);
+    std::printf("%-22s %10.3f %10.3f\n", label, s, l);
+  }
   {
     const double s = reporter.get(rays_name("tile200/", "g1", Path::Estimator, 60, 2), "samples/s");
     const double l = reporter.get(rays_name("1e6/", "g1", Path::Estimator, 60, 2), "samples/s");

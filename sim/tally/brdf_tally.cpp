@@ -1,0 +1,143 @@
+#include "sim/tally/brdf_tally.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mcref {
+
+std::vector<std::string> BrdfLayout::component_names() const {
+  std::vector<std::string> n;
+  for (const std::string& c : order1_classes) n.push_back("order1_" + c);
+  n.insert(n.end(), {"order2", "order3", "order4plus"});
+  return n;
+}
+
+std::size_t BrdfLayout::binned_size() const {
+  return static_cast<std::size_t>(components()) * hemispheres() * theta_o_bins * phi_bins * 3;
+}
+
+std::size_t BrdfLayout::sums_size() const {
+  return binned_size() + 2 * static_cast<std::size_t>(components()) * hemispheres() * 3;
+}
+
+BrdfAccumulator::BrdfAccumulator(const BrdfLayout& layout, double phi_i, std::vector<double>& sums)
+    : layout_(layout), phi_i_(phi_i), sums_(sums) {}
+
+void BrdfAccumulator::add(Vec3 wo, int order, int order1_class, const Rgb& weight, bool delta) {
+  const int classes = static_cast<int>(layout_.order1_classes.size());
+  const int c = order <= 1 ? order1_class : classes + std::min(order, 4) - 2;
+  const int h = wo.z >= 0 ? 0 : 1;
+  if (h == 1 && !layout_.transmission) return;
+  const int H = layout_.hemispheres(), T = layout_.theta_o_bins, P = layout_.phi_bins;
+  const std::size_t ch = static_cast<std::size_t>(c * H + h) * 3;
+  const std::size_t energy = layout_.binned_size() + (delta ? layout_.components() * H * 3 : 0) + ch;
+  for (int k = 0; k < 3; ++k) sums_[energy + k] += weight[k];
+  if (delta) return;
+  const double mu = std::fabs(wo.z);
+  const int t = h == 0 ? std::min(T - 1, static_cast<int>((1 - mu) * T)) : std::min(T - 1, static_cast<int>(mu * T));
+  const double span = layout_.folded ? kPi : 2 * kPi;
+  const int p = std::min(P - 1, static_cast<int>(relative_azimuth(spherical_phi(wo), phi_i_, layout_.folded) / span * P));
+  const std::size_t bin = ((static_cast<std::size_t>(c * H + h) * T + t) * P + p) * 3;
+  for (int k = 0; k < 3; ++k) sums_[bin + k] += weight[k];
+}
+
+namespace {
+
+Axis theta_o_axis(const BrdfLayout& l, int hemisphere) {
+  std::vector<double> e(l.theta_o_bins + 1);
+  for (int k = 0; k <= l.theta_o_bins; ++k) {
+    const double u = static_cast<double>(k) / l.theta_o_bins;
+    e[k] = hemisphere == 0 ? std::acos(1 - u) : kPi - std::acos(u);
+  }
+  return Axis::bins("theta_o", "rad", e);
+}
+
+}  // namespace
+
+std::vector<Table> make_brdf_tables(const std::string& name, const std::vector<double>& theta_i,
+                                    const std::vector<double>& phi_i, const BrdfLayout& l) {
+  std::vector<Table> out;
+  const Axis ti = Axis::points("theta_i", "rad", theta_i), pi = Axis::points("phi_i", "rad", phi_i);
+  const Axis phi = Axis::uniform_bins("phi", "rad", 0, l.folded ? kPi : 2 * kPi, l.phi_bins);
+  const Axis channel = Axis::points("channel", "RGB index", {0, 1, 2});
+  std::vector<double> comps(l.components() + 1);
+  for (int c = 0; c <= l.components(); ++c) comps[c] = c;
+  std::string names;
+  for (const std::string& n : l.component_names()) names += n + ",";
+  names += "total";
+  for (int h = 0; h < l.hemispheres(); ++h) {
+    const std::string base = name + (h == 0 ? "" : "_btdf");
+    const std::string what = h == 0 ? "BRDF" : "BTDF";
+    std::vector<std::string> parts{"total"};
+    for (const std::string& c : l.component_names()) parts.push_back(c);
+    for (const std::string& part : parts) {
+      Table t(part == "total" ? base : base + "_" + part, h == 0 ? "brdf" : "btdf",
+              {ti, pi, theta_o_axis(l, h), phi, channel});
+      t.units = "1/sr";
+      t.description = what + " f (without the cosine), cosine-weighted bin average; " +
+                      (part == "total" ? std::string("all orders, delta lobes excluded") : "component " + part);
+      t.attributes["component"] = part;
+      t.attributes["cosine_included"] = "false";
+      t.attributes["phi"] = l.folded ? "phi_o - phi_i folded into [0, pi]; 0 = back toward the light"
+                                     : "phi_o - phi_i in [0, 2pi); 0 = back toward the light";
+      t.attributes["delta_lobes"] = "excluded from the bins; their energy is in " + base + "_delta";
+      out.push_back(t);
+    }
+    for (const char* kind : {"_albedo", "_delta"}) {
+      Table t(base + kind, h == 0 ? "albedo" : "transmittance", {ti, pi, Axis::points("component", "index", comps), channel});
+      t.units = "1";
+      t.description = std::string(kind) == "_albedo"
+                          ? what + " directional energy per component (delta lobes included)"
+                          : what + " energy in delta lobes (exact mirror / unscattered) per component";
+      t.attributes["components"] = names;
+      out.push_back(t);
+    }
+  }
+  return out;
+}
+
+void add_brdf_batch(const std::vector<std::vector<double>>& sums, double paths, const BrdfLayout& l,
+                    std::vector<Table>& tables) {
+  const int C = l.components(), H = l.hemispheres(), T = l.theta_o_bins, P = l.phi_bins;
+  const double fold = l.folded ? 2.0 : 1.0;
+  const double dphi = (l.folded ? kPi : 2 * kPi) / P;
+  std::size_t table = 0;
+  for (int h = 0; h < H; ++h) {
+    // total + components, then albedo, then delta.
+    std::vector<std::vector<double>> est(C + 1), albedo(1), delta(1);
+    for (const std::vector<double>& s : sums) {
+      for (int part = 0; part <= C; ++part)
+        for (int t = 0; t < T; ++t) {
+          const double a = static_cast<double>(t) / T, b = static_cast<double>(t + 1) / T;
+          const double mu_lo = h == 0 ? 1 - b : a, mu_hi = h == 0 ? 1 - a : b;
+          const double omega = fold * 0.5 * (mu_hi * mu_hi - mu_lo * mu_lo) * dphi;
+          for (int p = 0; p < P; ++p)
+            for (int k = 0; k < 3; ++k) {
+              double e = 0;
+              for (int c = 0; c < C; ++c)
+                if (part == 0 || part == c + 1) e += s[((static_cast<std::size_t>(c * H + h) * T + t) * P + p) * 3 + k];
+              est[part].push_back(e / (paths * omega));
+            }
+        }
+      for (int kind = 0; kind < 2; ++kind) {
+        std::vector<double>& dst = kind == 0 ? albedo[0] : delta[0];
+        for (int part = 0; part <= C; ++part)  // components first, total last
+          for (int k = 0; k < 3; ++k) {
+            double e = 0;
+            for (int c = 0; c < C; ++c) {
+              if (part < C && part != c) continue;
+              const std::size_t i = static_cast<std::size_t>(c * H + h) * 3 + k;
+              const double non_delta = s[l.binned_size() + i], in_delta = s[l.binned_size() + C * H * 3 + i];
+              e += kind == 0 ? non_delta + in_delta : in_delta;
+            }
+            dst.push_back(e / paths);
+          }
+      }
+    }
+    for (int part = 0; part <= C; ++part) tables[table++].add_batch(est[part]);
+    tables[table++].add_batch(albedo[0]);
+    tables[table++].add_batch(delta[0]);
+  }
+}
+
+}  // namespace mcref
