@@ -38,8 +38,18 @@ Suite load_suite(const std::string& path) {
   s.name = h.any_string("name");
   s.title = h.any_string("title", s.name);
   s.significance = h.number("significance", {0, 0.5, true, true}, 1e-3);
+  const std::vector<std::string> includes = h.strings("include");
   h.finish();
   const fs::path dir = fs::path(path).parent_path();
+  // Cases of included suites (paths relative to this file) come first.
+  for (const std::string& inc : includes) {
+    const Suite other = load_suite((dir / inc).string());
+    for (const Case& c : other.cases) {
+      for (const Case& have : s.cases)
+        if (have.name == c.name) throw ConfigError(path, "suite.include", "case \"" + c.name + "\" appears twice");
+      s.cases.push_back(c);
+    }
+  }
   const auto cases = r.tables("case");
   if (cases.empty()) r.fail("case", "at least one [[case]] is required");
   for (std::size_t i = 0; i < cases.size(); ++i) {

@@ -8,6 +8,7 @@
 #include "sim/geometry/micrograin_field.h"
 #include "sim/geometry/slab.h"
 #include "sim/geometry/sphere_packing.h"
+#include "sim/materials/micrograin_materials.h"
 
 namespace mcref {
 
@@ -38,6 +39,7 @@ struct Experiment {
   std::string text;  // the effective configuration (after --set), stored as provenance
   std::string kind;  // geometry kind: "micrograin", "slab" or "spheres"
   MicrograinGeometry micrograin;
+  MicrograinMaterials materials;  // micrograin transport only
   SlabGeometry slab;
   SpherePacking spheres;
   bool isotropic = true;  // the sample's statistics are symmetric in azimuth
