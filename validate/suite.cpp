@@ -17,7 +17,16 @@ namespace fs = std::filesystem;
 
 namespace mcref {
 
-Suite load_suite(const std::string& path) {
+namespace {
+Suite load_suite_at_depth(const std::string& path, int depth);
+}  // namespace
+
+Suite load_suite(const std::string& path) { return load_suite_at_depth(path, 0); }
+
+namespace {
+
+Suite load_suite_at_depth(const std::string& path, int depth) {
+  if (depth > 8) throw ConfigError(path, "suite.include", "includes nest deeper than 8 (a cycle?)");
   std::ifstream in(path);
   if (!in) throw ConfigError(path, "", "cannot read the file");
   std::stringstream buf;
@@ -43,7 +52,7 @@ Suite load_suite(const std::string& path) {
   const fs::path dir = fs::path(path).parent_path();
   // Cases of included suites (paths relative to this file) come first.
   for (const std::string& inc : includes) {
-    const Suite other = load_suite((dir / inc).string());
+    const Suite other = load_suite_at_depth((dir / inc).string(), depth + 1);
     for (const Case& c : other.cases) {
       for (const Case& have : s.cases)
         if (have.name == c.name) throw ConfigError(path, "suite.include", "case \"" + c.name + "\" appears twice");
@@ -82,8 +91,6 @@ Suite load_suite(const std::string& path) {
   r.finish();
   return s;
 }
-
-namespace {
 
 // Loads cached tables if current, else simulates and writes them.
 TableFile tables_for(const Case& c, const Experiment& ex, const SuiteOptions& o, const std::string& path,
