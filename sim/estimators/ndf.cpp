@@ -26,7 +26,7 @@ Estimator ndf_estimator() {
         if (h.kind != Hit::Kind::Grain) continue;
         s[cells] += 1;
         const int a = th.find_bin(spherical_theta(h.normal));
-        const int b = ph.find_bin(spherical_phi(h.normal));
+        const int b = ph.size() == 1 ? 0 : ph.find_bin(spherical_phi(h.normal));
         if (a >= 0 && b >= 0) s[a * ph.size() + b] += 1;
       }
     });

@@ -20,7 +20,7 @@ Estimator tau_plus_estimator() {
         const Vec3 d = -unit_direction(f, incident_direction(theta, phi));
         const Sums acc = run_chunks(m.samples, 1, key.with(dir++), [&](Rng& rng, std::uint64_t n, Sums& s) {
           for (std::uint64_t k = 0; k < n; ++k)
-            if (f.intersect_unit(uniform_top_origin(f, rng), d).kind == Hit::Kind::Grain) s[0] += 1;
+            if (f.first_hit_kind_unit(uniform_top_origin(f, rng), d) == Hit::Kind::Grain) s[0] += 1;
         });
         est.push_back(acc[0] / static_cast<double>(m.samples));
       }

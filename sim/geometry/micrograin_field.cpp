@@ -105,10 +105,15 @@ void MicrograinField::build_scene() {
 }
 
 Vec3 MicrograinField::wrap_unit(Vec3 p) const {
-  p.x -= side_x_ * std::floor(p.x / side_x_);
-  p.y -= side_y_ * std::floor(p.y / side_y_);
-  if (p.x >= side_x_) p.x -= side_x_;  // floor rounding at the upper edge
-  if (p.y >= side_y_) p.y -= side_y_;
+  // Most points are already inside: a compare, no division.
+  if (!(p.x >= 0 && p.x < side_x_)) {
+    p.x -= side_x_ * std::floor(p.x / side_x_);
+    if (p.x >= side_x_) p.x -= side_x_;  // floor rounding at the upper edge
+  }
+  if (!(p.y >= 0 && p.y < side_y_)) {
+    p.y -= side_y_ * std::floor(p.y / side_y_);
+    if (p.y >= side_y_) p.y -= side_y_;
+  }
   return p;
 }
 
@@ -117,12 +122,16 @@ Hit MicrograinField::intersect(Vec3 origin, Vec3 direction) const {
   return intersect_unit(to_unit(origin), d);
 }
 
-Hit MicrograinField::intersect_unit(Vec3 o, Vec3 d) const { return trace(o, d, kNoGrain); }
+Hit MicrograinField::intersect_unit(Vec3 o, Vec3 d) const { return trace<true>(o, d, kNoGrain); }
+
+Hit::Kind MicrograinField::first_hit_kind_unit(Vec3 o, Vec3 d) const { return trace<false>(o, d, kNoGrain).kind; }
 
 bool MicrograinField::occluded_unit(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
-  return trace(o, d, start_grain).kind != Hit::Kind::Escape;
+  return trace<false>(o, d, start_grain).kind != Hit::Kind::Escape;
 }
 
+// kDetail = false fills only the kind (and t) of the hit: no normals, no position.
+template <bool kDetail>
 Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
   Hit hit;
   o = wrap_unit(o);
@@ -159,8 +168,8 @@ Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
       // Exact root in double precision for the sphere Embree found.
       const Vec3 c = prim_centres_[rh.hit.primID];
       const Vec3 oc = o - c;
-      const double a = dot(d, d), b = dot(oc, d), cc = dot(oc, oc) - 1;
-      const double disc = b * b - a * cc;
+      const double inv_a = 1 / dot(d, d), b = dot(oc, d), cc = dot(oc, oc) - 1;
+      const double disc = b * b - cc / inv_a;
       // Leaving the grain we start on (convex, so only a numerical self-hit).
       const bool self = wraps == 0 && owner_[rh.hit.primID] == start_grain && std::fabs(cc) < 1e-6;
       if (self || disc < 0) {
@@ -172,29 +181,32 @@ Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
         continue;
       }
       const double sq = std::sqrt(disc);
-      const double t0 = (-b - sq) / a, t1 = (-b + sq) / a;
+      const double t0 = (-b - sq) * inv_a, t1 = (-b + sq) * inv_a;
       double t = (std::fabs(t0 - rh.ray.tfar) <= std::fabs(t1 - rh.ray.tfar)) ? t0 : t1;
       t = std::max(t, 0.0);
       if (t >= t_base) break;  // meets the base plane first (a lower-half hit)
-      Vec3 p = o + d * t;
-      Vec3 n = p - c;
-      n = n / length(n);
       hit.kind = Hit::Kind::Grain;
       hit.t = travelled + t;
-      hit.grain = owner_[rh.hit.primID];
-      hit.unit_normal = n;
-      hit.normal = normal_from_unit(n);
-      hit.position = from_unit(wrap_unit(p));
+      if constexpr (kDetail) {
+        const Vec3 p = o + d * t;
+        const Vec3 n = p - c;  // unit length up to rounding: p is on the unit sphere
+        hit.grain = owner_[rh.hit.primID];
+        hit.unit_normal = n;
+        hit.normal = normal_from_unit(n);
+        hit.position = from_unit(wrap_unit(p));
+      }
       return hit;
     }
     if (t_far == t_base) {
-      Vec3 p = o + d * t_base;
-      p.z = 0;
       hit.kind = Hit::Kind::Base;
       hit.t = travelled + t_base;
-      hit.unit_normal = {0, 0, 1};
-      hit.normal = {0, 0, 1};
-      hit.position = from_unit(wrap_unit(p));
+      if constexpr (kDetail) {
+        Vec3 p = o + d * t_base;
+        p.z = 0;
+        hit.unit_normal = {0, 0, 1};
+        hit.normal = {0, 0, 1};
+        hit.position = from_unit(wrap_unit(p));
+      }
       return hit;
     }
     if (t_far == t_top) break;

@@ -67,6 +67,8 @@ class MicrograinField {
   // Same, with origin and direction already in unit space (hot path for
   // estimators; the direction need not be unit length, t is in its units).
   Hit intersect_unit(Vec3 unit_origin, Vec3 unit_direction) const;
+  // Only the kind of the first hit (cheaper: no normal or position).
+  Hit::Kind first_hit_kind_unit(Vec3 unit_origin, Vec3 unit_direction) const;
   // True if a ray from a unit-space point meets a grain or the base before
   // leaving the grain layer. `start_grain` is the grain the point lies on
   // (kNoGrain for a point on the base), so that it is not hit again.
@@ -87,7 +89,10 @@ class MicrograinField {
   Vec3 to_unit(Vec3 p) const { return {p.x * inv_rx_, p.y * inv_ry_, p.z * inv_c_}; }
   Vec3 from_unit(Vec3 p) const { return {p.x * rx_, p.y * ry_, p.z * c_}; }
   // Real-space normal from a unit-space one (inverse transpose of the map).
-  Vec3 normal_from_unit(Vec3 n) const { return normalize(Vec3{n.x * inv_rx_, n.y * inv_ry_, n.z * inv_c_}); }
+  Vec3 normal_from_unit(Vec3 n) const {
+    const Vec3 m{n.x * inv_rx_, n.y * inv_ry_, n.z * inv_c_};
+    return m * (1 / std::sqrt(dot(m, m)));
+  }
   // Wraps a unit-space point into [0, side_x) x [0, side_y).
   Vec3 wrap_unit(Vec3 p) const;
 
@@ -97,6 +102,7 @@ class MicrograinField {
  private:
   void build_grid();
   void build_scene();
+  template <bool kDetail>
   Hit trace(Vec3 unit_origin, Vec3 unit_direction, std::uint32_t start_grain) const;
 
   MicrograinGeometry geometry_;
