@@ -128,7 +128,7 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
     for (const Check& chk : suite.cases[k].checks) {
       bool found = false;
       for (const Measure& m : experiments[k].measures)
-        found = found || chk.table == m.name || chk.table == m.name + "_conditional" || chk.table == m.name + "_independent";
+        found = found || chk.table == m.name || chk.table.rfind(m.name + "_", 0) == 0;  // a measure's tables are <name>[_part]
       if (!found)
         throw ConfigError(suite.file, "case." + std::to_string(k) + ".check",
                           "table \"" + chk.table + "\" is not produced by " + suite.cases[k].experiment_path);

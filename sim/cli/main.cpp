@@ -17,6 +17,7 @@ const char* kUsage =
     "  simulate EXPERIMENT.toml -o TABLES.h5   simulate an experiment, write its tables\n"
     "  validate SUITE.toml -o OUTDIR           run a validation suite, write tables, plots, report\n"
     "  info TABLES.h5                          print the tables, axes, sample counts and provenance\n"
+    "  export-vdb EXPERIMENT.toml -o OUT.vdb   write a slab's layer density grids (OpenVDB)\n"
     "\n"
     "`mcref <verb> --help` explains each verb.\n";
 
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
     if (verb == "simulate") return mcref::cli::simulate(args, command_line);
     if (verb == "validate") return mcref::cli::validate(args, command_line);
     if (verb == "info") return mcref::cli::info(args);
+    if (verb == "export-vdb") return mcref::cli::export_vdb(args);
     std::fprintf(stderr, "mcref: error: unknown verb '%s' (allowed: simulate, validate, info)\n", verb.c_str());
     return 2;
   } catch (const mcref::ConfigError& e) {

@@ -9,6 +9,7 @@ namespace mcref::cli {
 int simulate(const std::vector<std::string>& args, const std::string& command_line);
 int validate(const std::vector<std::string>& args, const std::string& command_line);
 int info(const std::vector<std::string>& args);
+int export_vdb(const std::vector<std::string>& args);
 
 // Small argument parser shared by the verbs.
 struct Args {

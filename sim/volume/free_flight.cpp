@@ -1,0 +1,84 @@
+#include "sim/volume/free_flight.h"
+
+#include <cmath>
+
+#include "sim/volume/density_grid.h"
+
+namespace mcref::volume {
+
+namespace {
+
+// The tracking loop; `accept(p, k)` decides whether a tentative collision in
+// layer k is real (always, for homogeneous layers at their own density).
+template <class Accept>
+Flight track(const std::vector<MediumLayer>& layers, Photon& p, Rng& rng, bool use_majorant, Accept accept) {
+  const int n = static_cast<int>(layers.size());
+  const double rate = -p.d.z;  // d(depth)/ds
+  double tau = -std::log1p(-rng.uniform());
+  for (;;) {
+    const MediumLayer& l = layers[p.layer];
+    const double mu_t = (use_majorant ? l.majorant : l.density) * l.phase->sigma(p.d);
+    const double dist = rate > 0 ? (l.bottom - p.depth) / rate : rate < 0 ? (l.top - p.depth) / rate : INFINITY;
+    const double optical = mu_t > 0 ? mu_t * dist : 0.0;
+    if (tau < optical) {
+      p.advance(tau / mu_t);
+      if (accept(p, p.layer)) return Flight::kCollision;
+      tau = -std::log1p(-rng.uniform());  // null collision: memoryless restart
+      continue;
+    }
+    if (!std::isfinite(dist)) return Flight::kLost;  // horizontal in an empty layer (measure zero)
+    tau -= optical;
+    p.advance(dist);
+    if (rate > 0) {
+      p.depth = l.bottom;
+      if (++p.layer == n) {
+        p.layer = n - 1;
+        return Flight::kExitBottom;
+      }
+    } else {
+      p.depth = l.top;
+      if (--p.layer < 0) {
+        p.layer = 0;
+        return Flight::kExitTop;
+      }
+    }
+  }
+}
+
+class HomogeneousFlight final : public FreeFlight {
+ public:
+  explicit HomogeneousFlight(const SlabMedium& m) : m_(m) {}
+  Flight fly(Photon& p, Rng& rng) override {
+    return track(m_.layers(), p, rng, false, [](const Photon&, int) { return true; });
+  }
+
+ private:
+  const SlabMedium& m_;
+};
+
+class GridFlight final : public FreeFlight {
+ public:
+  explicit GridFlight(const SlabMedium& m) : m_(m), lookup_(*m.grids()) {}
+  Flight fly(Photon& p, Rng& rng) override {
+    return track(m_.layers(), p, rng, true, [&](const Photon& q, int k) {
+      const double maj = m_.layers()[k].majorant;
+      return rng.uniform() * maj < lookup_.density(k, q.x, q.y, q.depth);
+    });
+  }
+  double lateral_period() const override { return m_.geometry().grid.tile; }
+
+ private:
+  const SlabMedium& m_;
+  GridLookup lookup_;
+};
+
+}  // namespace
+
+std::unique_ptr<FreeFlight> make_homogeneous_flight(const SlabMedium& m) { return std::make_unique<HomogeneousFlight>(m); }
+
+std::unique_ptr<FreeFlight> make_flight(const SlabMedium& m) {
+  if (m.grids()) return std::make_unique<GridFlight>(m);
+  return make_homogeneous_flight(m);
+}
+
+}  // namespace mcref::volume

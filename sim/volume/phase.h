@@ -1,0 +1,40 @@
+#pragma once
+// The phase functions of slab layers behind one small interface: SGGX
+// specular two-sided flakes (SpongeCake Eq. 4-5, Heitz 2015 visible-normal
+// sampling), Henyey-Greenstein, isotropic, and the Lambert-sphere phase
+// function (d'Eon 2021 Eq. 1/5).
+//
+// Directions: wi points toward where the light came from (the reversed
+// propagation direction), wo along the new propagation direction.
+#include <memory>
+
+#include "sim/core/rgb.h"
+#include "sim/core/rng.h"
+#include "sim/core/vec.h"
+#include "sim/geometry/slab.h"
+
+namespace mcref::volume {
+
+struct ScatterSample {
+  Vec3 wo;
+  Rgb weight;          // albedo-weighted phase / pdf (RGB)
+  bool valid = false;
+};
+
+class PhaseFunction {
+ public:
+  virtual ~PhaseFunction() = default;
+  // Projected area sigma(w): the extinction along w is rho sigma(w) (Eq. 3);
+  // 1 for ordinary (non-flake) media.
+  virtual double sigma(Vec3 w) const { return 1.0; }
+  // An upper bound of sigma over all directions (delta-tracking majorants).
+  virtual double max_sigma() const { return 1.0; }
+  // Normalised f_p(wi -> wo), \int f_p dwo = 1 (no albedo).
+  virtual double eval(Vec3 wi, Vec3 wo) const = 0;
+  // wo ~ f_p(wi -> .), weight = albedo (or flake reflectance F(m)).
+  virtual ScatterSample sample(Vec3 wi, Rng& rng) const = 0;
+};
+
+std::unique_ptr<PhaseFunction> make_phase(const SlabLayer& layer);
+
+}  // namespace mcref::volume

@@ -1,0 +1,29 @@
+#pragma once
+// Substrate BSDFs under the bottom layer (SpongeCake Sec. 4.5): Lambertian,
+// smooth conductor (exact Fresnel with complex IOR) and rough conductor (GGX,
+// single-bounce microfacet BRDF with Smith height-uncorrelated G, sampled by
+// visible normals, Heitz 2018). The substrate's normal is +z.
+#include "sim/core/rgb.h"
+#include "sim/core/rng.h"
+#include "sim/core/vec.h"
+#include "sim/geometry/slab.h"
+
+namespace mcref::volume {
+
+struct SubstrateSample {
+  Vec3 wo;
+  Rgb weight;            // f cos / pdf
+  bool specular = false; // a delta lobe (smooth conductor)
+  bool valid = false;
+};
+
+// Unpolarised Fresnel reflectance of a conductor eta + i k at incidence cosine c.
+double fresnel_conductor(double cos_theta, double eta, double k);
+Rgb fresnel_conductor(double cos_theta, const Rgb& eta, const Rgb& k);
+
+// wi points up (toward where the light came from), wi.z > 0.
+SubstrateSample sample_substrate(const SlabSubstrate& s, Vec3 wi, Rng& rng);
+// f(wi, wo) without the cosine (0 for the smooth conductor: a delta lobe).
+Rgb eval_substrate(const SlabSubstrate& s, Vec3 wi, Vec3 wo);
+
+}  // namespace mcref::volume
