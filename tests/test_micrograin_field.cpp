@@ -157,14 +157,22 @@ Vec3 random_down(Rng& rng, double zmin) {
 }
 
 // Traces `rays` rays with the given generator and returns the number of
-// disagreements (printing the first few).
+// disagreements with the brute force (printing the first few); the kind-only
+// first_hit_kind_unit and occluded_unit must agree with intersect.
 template <class Gen>
 int count_mismatches(const MicrograinField& f, int rays, Gen&& gen, const std::string& what) {
   int bad = 0;
   for (int k = 0; k < rays; ++k) {
     Vec3 o, d;
     gen(o, d);
-    const std::string msg = compare(f, o, d, f.intersect(o, d), brute_force(f, o, d));
+    const Hit h = f.intersect(o, d);
+    std::string msg = compare(f, o, d, h, brute_force(f, o, d));
+    // The kind-only paths agree with the full trace.
+    const MicrograinGeometry& g = f.geometry();
+    const Vec3 du{d.x / g.r_x(), d.y / g.r_y(), d.z / g.c()};
+    if (f.first_hit_kind_unit(f.to_unit(o), du) != h.kind) msg += " first_hit_kind_unit differs from intersect;";
+    if (f.occluded_unit(f.to_unit(o), du, MicrograinField::kNoGrain) != (h.kind != Hit::Kind::Escape))
+      msg += " occluded_unit differs from intersect;";
     if (!msg.empty() && ++bad <= 5) ADD_FAILURE() << what << ": " << msg;
   }
   return bad;
@@ -381,6 +389,8 @@ TEST(MicrograinFieldPoisson, MeanCountMatchesDensityTimesArea) {
       }
     }
     const double mean = s / seeds, var = (s2 - seeds * mean * mean) / (seeds - 1);
+    std::printf("%s: seeds 1000..1399, mean count %.2f (expected %.2f, 4 sigma = %.2f), variance %.1f\n", c.label, mean,
+                expected, 4 * std::sqrt(expected / seeds), var);
     EXPECT_NEAR(mean, expected, 4 * std::sqrt(expected / seeds))
         << c.label << ": mean count " << mean << " over seeds 1000..1399, expected " << expected;
     EXPECT_NEAR(var, expected, 4 * std::sqrt(expected / seeds + 2 * expected * expected / (seeds - 1)))

@@ -1,4 +1,7 @@
+#include <unistd.h>
+
 #include <cstdio>
+#include <filesystem>
 
 #include "sim/cli/verbs.h"
 #include "sim/config/config_error.h"
@@ -33,6 +36,10 @@ int simulate(const std::vector<std::string>& raw, const std::string& command_lin
   std::vector<std::string> sets = a.sets;
   if (a.seed >= 0) sets.push_back("run.seed=" + std::to_string(a.seed));
   const Experiment ex = load_experiment(a.positional[0], sets);
+  // Fail before simulating if the output cannot be written.
+  const std::filesystem::path parent = std::filesystem::absolute(a.output).parent_path();
+  if (!std::filesystem::is_directory(parent) || access(parent.c_str(), W_OK) != 0)
+    throw ConfigError(a.output, "-o", "the output directory does not exist or is not writable");
   SimulateOptions opt;
   opt.threads = a.threads;
   opt.quiet = a.quiet;

@@ -182,8 +182,11 @@ Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
       }
       const double sq = std::sqrt(disc);
       const double t0 = (-b - sq) * inv_a, t1 = (-b + sq) * inv_a;
-      double t = (std::fabs(t0 - rh.ray.tfar) <= std::fabs(t1 - rh.ray.tfar)) ? t0 : t1;
-      t = std::max(t, 0.0);
+      if (t1 <= 0) {  // the sphere lies behind the origin: a float artefact
+        t_near = rh.ray.tfar + kSkip;
+        continue;
+      }
+      const double t = (t0 >= 0 && std::fabs(t0 - rh.ray.tfar) <= std::fabs(t1 - rh.ray.tfar)) ? t0 : t1;
       if (t >= t_base) break;  // meets the base plane first (a lower-half hit)
       hit.kind = Hit::Kind::Grain;
       hit.t = travelled + t;
