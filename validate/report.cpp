@@ -114,7 +114,10 @@ std::string report_html(const Suite& suite, const std::vector<CaseResult>& resul
     << " and every |z| under the Sidak bound at the same level; a failure there means the simulator or the model "
     << "code is wrong. Approximate models get their error measured, and fail only past a tolerance the suite states. "
     << "z = (sim - model)/stderr, mapped from Student's t (batches - 1 dof) to a normal quantile. "
-    << "Max rel. error is over cells where |sim| &gt; 5 stderr.</p>\n";
+    << "Max rel. error is over cells where |sim| &gt; 5 stderr. Caveat: the cells of one table share each "
+    << "realization of the geometry, so they are positively correlated, while the &chi;&sup2; test treats them as "
+    << "independent; with few batches this makes false failures of exact models more likely than the stated level "
+    << "(suites use many small batches to keep it close).</p>\n";
   h << "<h2>Summary</h2>\n<table><tr><th>case</th><th>figure</th><th>table</th><th>model</th><th>kind</th>"
     << "<th>cells</th><th>&chi;&sup2;/dof</th><th>max |z|</th><th>max rel. error</th><th>verdict</th></tr>\n";
   char buf[64];
