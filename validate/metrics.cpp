@@ -14,7 +14,12 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
   const double nu = static_cast<double>(batches - 1);
   double rel2 = 0;
   for (std::size_t i = 0; i < sim.size(); ++i) {
-    if (!std::isfinite(sim[i]) || !std::isfinite(model[i]) || !std::isfinite(se[i]) || se[i] <= 0) continue;
+    if (!std::isfinite(sim[i]) || !std::isfinite(model[i]) || !std::isfinite(se[i])) continue;
+    if (se[i] <= 0) {  // every batch gave the same value: compare exactly
+      const bool same = std::fabs(sim[i] - model[i]) <= 1e-9 * std::fmax(1.0, std::fabs(model[i]));
+      ++(same ? c.exact_cells : c.mismatched_exact_cells);
+      continue;
+    }
     const double t = (sim[i] - model[i]) / se[i];
     // Probability-preserving map from t(nu) to N(0, 1), done on the tail
     // P(T > |t|) = I_{nu/(nu+t^2)}(nu/2, 1/2) / 2 to keep precision.
@@ -42,7 +47,17 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
 
 Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance) {
   char buf[256];
-  if (c.cells == 0) return {"FAIL", "no cell could be compared"};
+  if (c.mismatched_exact_cells > 0) {
+    std::snprintf(buf, sizeof buf, "%zu zero-variance cells differ from the model", c.mismatched_exact_cells);
+    return {exact ? "FAIL" : "measured", buf};
+  }
+  if (c.cells == 0) {
+    if (c.exact_cells > 0) {
+      std::snprintf(buf, sizeof buf, "all %zu cells have zero variance and equal the model", c.exact_cells);
+      return {"pass", buf};
+    }
+    return {"FAIL", "no cell could be compared"};
+  }
   if (exact) {
     const double bound = sidak_z_bound(alpha, static_cast<double>(c.cells));
     if (c.p_value < alpha) {

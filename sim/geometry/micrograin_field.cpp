@@ -124,6 +124,10 @@ Hit MicrograinField::intersect(Vec3 origin, Vec3 direction) const {
 
 Hit MicrograinField::intersect_unit(Vec3 o, Vec3 d) const { return trace<true>(o, d, kNoGrain); }
 
+Hit MicrograinField::intersect_unit(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
+  return trace<true>(o, d, start_grain);
+}
+
 Hit::Kind MicrograinField::first_hit_kind_unit(Vec3 o, Vec3 d) const { return trace<false>(o, d, kNoGrain).kind; }
 
 bool MicrograinField::occluded_unit(Vec3 o, Vec3 d, std::uint32_t start_grain) const {

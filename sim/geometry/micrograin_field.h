@@ -67,6 +67,8 @@ class MicrograinField {
   // Same, with origin and direction already in unit space (hot path for
   // estimators; the direction need not be unit length, t is in its units).
   Hit intersect_unit(Vec3 unit_origin, Vec3 unit_direction) const;
+  // Same, for a ray leaving the surface of grain `start_grain` (not hit again).
+  Hit intersect_unit(Vec3 unit_origin, Vec3 unit_direction, std::uint32_t start_grain) const;
   // Only the kind of the first hit (cheaper: no normal or position).
   Hit::Kind first_hit_kind_unit(Vec3 unit_origin, Vec3 unit_direction) const;
   // True if a ray from a unit-space point meets a grain or the base before

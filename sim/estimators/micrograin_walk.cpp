@@ -1,0 +1,67 @@
+#include "sim/estimators/micrograin_walk.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mcref {
+
+namespace {
+
+constexpr double kSelfSkip = 1e-4;  // unit space (grain radii), as the field's own skip
+constexpr int kMaxSelfRetries = 64;
+
+}  // namespace
+
+Hit next_hit(const MicrograinField& f, Vec3 o, Vec3 d, std::uint32_t start, std::uint64_t* rays) {
+  const double wrap_free = 0.25 * std::min(f.unit_side_x(), f.unit_side_y());
+  const double step = kSelfSkip / length(d);
+  for (int k = 0;; ++k) {
+    if (rays) ++*rays;
+    const Hit h = f.intersect_unit(o, d);
+    if (start == MicrograinField::kNoGrain || h.kind != Hit::Kind::Grain || h.grain != start || h.t > wrap_free ||
+        k >= kMaxSelfRetries)
+      return h;
+    o = o + d * (h.t + step);
+  }
+}
+
+void trace_brdf_path(const MicrograinField& f, const MicrograinMaterials& mat, Vec3 wi, int max_order, Rng& rng,
+                     BrdfAccumulator& tally, WalkCounters* counters) {
+  if (counters) ++counters->paths;
+  std::uint64_t* rays = counters ? &counters->rays : nullptr;
+  const MicrograinGeometry& g = f.geometry();
+  auto to_unit_dir = [&](Vec3 d) { return Vec3{d.x / g.r_x(), d.y / g.r_y(), d.z / g.c()}; };
+  Vec3 d = -wi;
+  Vec3 o = {rng.uniform() * f.unit_side_x(), rng.uniform() * f.unit_side_y(), 1.0};
+  std::uint32_t start = MicrograinField::kNoGrain;
+  Rgb throughput(1.0);
+  int order = 0, first_class = 0;
+  bool delta = true;  // every event so far was an exact mirror reflection on the base
+  for (;;) {
+    const Hit h = next_hit(f, o, to_unit_dir(d), start, rays);
+    if (h.kind == Hit::Kind::Escape) {
+      if (order > 0) tally.add(d, order, first_class, throughput, delta);
+      return;
+    }
+    if (max_order > 0 && order >= max_order) return;
+    ++order;
+    const bool grain = h.kind == Hit::Kind::Grain;
+    if (order == 1) first_class = grain ? 0 : 1;
+    const MicroBrdfSample s = sample_micro_brdf(grain ? mat.grain : mat.base, -d, h.normal, rng);
+    if (s.absorbed) return;
+    throughput = throughput * s.weight;
+    delta = delta && s.delta && !grain;
+    d = s.wo;
+    // Unbiased Russian roulette on the largest channel.
+    const double q = std::min(1.0, throughput.max());
+    if (q <= 0) return;
+    if (q < 1) {
+      if (rng.uniform() >= q) return;
+      throughput = throughput / q;
+    }
+    o = f.to_unit(h.position);
+    start = grain ? h.grain : MicrograinField::kNoGrain;
+  }
+}
+
+}  // namespace mcref

@@ -1,0 +1,151 @@
+#include "sim/materials/micro_brdf.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "models/micrograin/fresnel.h"
+#include "sim/core/frame.h"
+#include "sim/core/warp.h"
+
+namespace mcref {
+
+namespace mg = micrograin;
+
+std::string MicroBrdf::name() const {
+  switch (type) {
+    case Type::Black: return "black";
+    case Type::Lambertian: return "lambertian";
+    case Type::Conductor: return "conductor";
+    case Type::RoughConductor: return "rough_conductor";
+    case Type::DiffuseSpecular: return "diffuse_specular";
+  }
+  return "?";
+}
+
+namespace {
+
+Rgb conductor_fresnel(const MicroBrdf& b, double c) {
+  return {mg::fresnel_conductor(c, b.eta.r, b.kappa.r), mg::fresnel_conductor(c, b.eta.g, b.kappa.g),
+          mg::fresnel_conductor(c, b.eta.b, b.kappa.b)};
+}
+
+Vec3 mirror(Vec3 w, Vec3 n) { return n * (2 * dot(w, n)) - w; }
+
+double ggx_lambda_local(double alpha, Vec3 w) {
+  const double s2 = std::fmax(0.0, 1 - w.z * w.z);
+  if (s2 == 0) return 0;
+  const double t2 = s2 / (w.z * w.z);
+  return 0.5 * (-1 + std::sqrt(1 + alpha * alpha * t2));
+}
+
+// Heitz 2018, "Sampling the GGX distribution of visible normals" (isotropic alpha).
+Vec3 sample_ggx_vndf(double alpha, Vec3 wi, double u1, double u2) {
+  const Vec3 vh = normalize(Vec3{alpha * wi.x, alpha * wi.y, wi.z});
+  const double lensq = vh.x * vh.x + vh.y * vh.y;
+  const Vec3 t1 = lensq > 0 ? Vec3{-vh.y, vh.x, 0} / std::sqrt(lensq) : Vec3{1, 0, 0};
+  const Vec3 t2 = cross(vh, t1);
+  const double r = std::sqrt(u1), phi = 2 * kPi * u2;
+  const double p1 = r * std::cos(phi);
+  double p2 = r * std::sin(phi);
+  const double s = 0.5 * (1 + vh.z);
+  p2 = (1 - s) * std::sqrt(std::fmax(0.0, 1 - p1 * p1)) + s * p2;
+  const Vec3 nh = t1 * p1 + t2 * p2 + vh * std::sqrt(std::fmax(0.0, 1 - p1 * p1 - p2 * p2));
+  return normalize(Vec3{alpha * nh.x, alpha * nh.y, std::fmax(1e-12, nh.z)});
+}
+
+// The Lambertian body under a smooth dielectric: the light refracted into the
+// body bounces (albedo K_d, cosine-distributed) between body and interface
+// until it leaves (local frame, n = +z). Returns the exit direction, or z <= 0
+// if the path was cut (never in practice: see the bound).
+MicroBrdfSample diffuse_under_dielectric(const MicroBrdf& b, Rng& rng) {
+  MicroBrdfSample s;
+  s.weight = Rgb(1.0);
+  for (int bounce = 0; bounce < 100000; ++bounce) {
+    s.weight = s.weight * b.albedo;
+    // Russian roulette on the body albedo keeps the loop short for bright bodies.
+    const double q = std::min(1.0, s.weight.max());
+    if (q <= 0 || rng.uniform() >= q) {
+      s.absorbed = true;
+      return s;
+    }
+    s.weight = s.weight / q;
+    const Vec3 w = sample_cosine_hemisphere(rng.uniform(), rng.uniform());  // inside, toward the interface
+    const double f_in = mg::fresnel_dielectric(w.z, 1.0 / b.ior);        // from the body side
+    if (rng.uniform() < f_in) continue;                                     // reflected back to the body
+    const double sin2_out = b.ior * b.ior * (1 - w.z * w.z);
+    const double scale = b.ior;  // tangential components scale by eta
+    s.wo = normalize(Vec3{w.x * scale, w.y * scale, std::sqrt(std::fmax(0.0, 1 - sin2_out))});
+    return s;
+  }
+  s.absorbed = true;
+  return s;
+}
+
+}  // namespace
+
+MicroBrdfSample sample_micro_brdf(const MicroBrdf& b, Vec3 wi, Vec3 n, Rng& rng) {
+  MicroBrdfSample s;
+  const double c = std::clamp(dot(wi, n), 0.0, 1.0);
+  switch (b.type) {
+    case MicroBrdf::Type::Black:
+      s.absorbed = true;
+      return s;
+    case MicroBrdf::Type::Lambertian: {
+      const Frame fr(n);
+      s.wo = fr.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
+      s.weight = b.albedo;
+      return s;
+    }
+    case MicroBrdf::Type::Conductor:
+      s.wo = mirror(wi, n);
+      s.weight = conductor_fresnel(b, c);
+      s.delta = true;
+      return s;
+    case MicroBrdf::Type::RoughConductor: {
+      const Frame fr(n);
+      const Vec3 wl = fr.to_local(wi);
+      const Vec3 m = sample_ggx_vndf(b.alpha, wl, rng.uniform(), rng.uniform());
+      const Vec3 ol = mirror(wl, m);
+      if (ol.z <= 0) {
+        s.absorbed = true;
+        return s;
+      }
+      const double li = ggx_lambda_local(b.alpha, wl), lo = ggx_lambda_local(b.alpha, ol);
+      s.wo = fr.to_world(ol);
+      s.weight = conductor_fresnel(b, dot(wl, m)) * ((1 + li) / (1 + li + lo));
+      return s;
+    }
+    case MicroBrdf::Type::DiffuseSpecular: {
+      if (rng.uniform() < mg::fresnel_dielectric(c, b.ior)) {
+        s.wo = mirror(wi, n);
+        s.weight = Rgb(1.0);
+        s.delta = true;
+        return s;
+      }
+      s = diffuse_under_dielectric(b, rng);
+      if (!s.absorbed) s.wo = Frame(n).to_world(s.wo);
+      return s;
+    }
+  }
+  s.absorbed = true;
+  return s;
+}
+
+Rgb micro_brdf_albedo(const MicroBrdf& b, double cos_theta_i, Rng& rng, int samples) {
+  const double st = std::sqrt(std::fmax(0.0, 1 - cos_theta_i * cos_theta_i));
+  const Vec3 wi{st, 0, cos_theta_i}, n{0, 0, 1};
+  switch (b.type) {
+    case MicroBrdf::Type::Black: return Rgb(0.0);
+    case MicroBrdf::Type::Lambertian: return b.albedo;
+    case MicroBrdf::Type::Conductor: return conductor_fresnel(b, cos_theta_i);
+    default: break;
+  }
+  Rgb sum;
+  for (int k = 0; k < samples; ++k) {
+    const MicroBrdfSample s = sample_micro_brdf(b, wi, n, rng);
+    if (!s.absorbed) sum = sum + s.weight;
+  }
+  return sum / samples;
+}
+
+}  // namespace mcref
