@@ -5,26 +5,6 @@
 
 namespace mcref {
 
-namespace {
-
-constexpr double kSelfSkip = 1e-4;  // unit space (grain radii), as the field's own skip
-constexpr int kMaxSelfRetries = 64;
-
-}  // namespace
-
-Hit next_hit(const MicrograinField& f, Vec3 o, Vec3 d, std::uint32_t start, std::uint64_t* rays) {
-  const double wrap_free = 0.25 * std::min(f.unit_side_x(), f.unit_side_y());
-  const double step = kSelfSkip / length(d);
-  for (int k = 0;; ++k) {
-    if (rays) ++*rays;
-    const Hit h = f.intersect_unit(o, d);
-    if (start == MicrograinField::kNoGrain || h.kind != Hit::Kind::Grain || h.grain != start || h.t > wrap_free ||
-        k >= kMaxSelfRetries)
-      return h;
-    o = o + d * (h.t + step);
-  }
-}
-
 void trace_brdf_path(const MicrograinField& f, const MicrograinMaterials& mat, Vec3 wi, int max_order, Rng& rng,
                      BrdfAccumulator& tally, WalkCounters* counters) {
   if (counters) ++counters->paths;
@@ -38,7 +18,9 @@ void trace_brdf_path(const MicrograinField& f, const MicrograinMaterials& mat, V
   int order = 0, first_class = 0;
   bool delta = true;  // every event so far was an exact mirror reflection on the base
   for (;;) {
-    const Hit h = next_hit(f, o, to_unit_dir(d), start, rays);
+    if (rays) ++*rays;
+    // A ray leaving a grain does not hit that grain again (the field skips self-hits).
+    const Hit h = f.intersect_unit(o, to_unit_dir(d), start);
     if (h.kind == Hit::Kind::Escape) {
       if (order > 0) tally.add(d, order, first_class, throughput, delta);
       return;

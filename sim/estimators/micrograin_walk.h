@@ -19,15 +19,8 @@ namespace mcref {
 
 struct WalkCounters {
   std::uint64_t paths = 0;
-  std::uint64_t rays = 0;  // intersect_unit calls (self-hit retries included)
+  std::uint64_t rays = 0;  // intersect_unit calls
 };
-
-// First hit of a unit-space ray leaving the surface of `start_grain` (or the
-// base: MicrograinField::kNoGrain): a hit on the start grain itself before the
-// ray could have wrapped around the tile is a numerical self-hit (a convex
-// grain cannot be met again by a ray leaving it) and is stepped over.
-Hit next_hit(const MicrograinField& f, Vec3 unit_origin, Vec3 unit_direction, std::uint32_t start_grain,
-             std::uint64_t* rays);
 
 // wi: real-space incident direction (pointing away from the surface, wi.z > 0).
 // max_order > 0 scores only paths of at most that many events (0: unlimited).
