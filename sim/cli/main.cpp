@@ -18,6 +18,8 @@ const char* kUsage =
     "  validate SUITE.toml -o OUTDIR           run a validation suite, write tables, plots, report\n"
     "  info TABLES.h5                          print the tables, axes, sample counts and provenance\n"
     "  export-vdb EXPERIMENT.toml -o OUT.vdb   write a slab's layer density grids (OpenVDB)\n"
+    "  dataset DATASET.toml -o DATA.h5         simulate every entry of a parameter sweep (--shard K/N)\n"
+    "  merge SHARD.h5... -o DATA.h5            combine dataset shards into one file\n"
     "\n"
     "`mcref <verb> --help` explains each verb.\n";
 
@@ -38,6 +40,8 @@ int main(int argc, char** argv) {
     if (verb == "validate") return mcref::cli::validate(args, command_line);
     if (verb == "info") return mcref::cli::info(args);
     if (verb == "export-vdb") return mcref::cli::export_vdb(args);
+    if (verb == "dataset") return mcref::cli::dataset(args, command_line);
+    if (verb == "merge") return mcref::cli::merge(args);
     std::fprintf(stderr, "mcref: error: unknown verb '%s' (allowed: simulate, validate, info)\n", verb.c_str());
     return 2;
   } catch (const mcref::ConfigError& e) {

@@ -1,0 +1,207 @@
+#include "sim/dataset/dataset_run.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "sim/config/config_error.h"
+#include "sim/dataset/dataset_entry.h"
+#include "sim/io/table_file.h"
+#include "sim/run/progress.h"
+#include "sim/run/simulate.h"
+
+namespace mcref {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string part_path(const std::string& dir, std::int64_t index) {
+  return dir + "/entry-" + std::to_string(index) + ".h5";
+}
+
+std::string join_lines(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const std::string& l : lines) s += (s.empty() ? "" : "\n") + l;
+  return s;
+}
+
+// Keeps the tables the dataset asks for (all if none named).
+std::vector<Table> select_tables(const DatasetConfig& c, std::vector<Table> tables) {
+  if (c.tables.empty()) return tables;
+  std::vector<Table> kept;
+  for (const std::string& name : c.tables) {
+    auto it = std::find_if(tables.begin(), tables.end(), [&](const Table& t) { return t.name == name; });
+    if (it == tables.end()) {
+      std::string names;
+      for (const Table& t : tables) names += (names.empty() ? "" : ", ") + t.name;
+      throw ConfigError(c.file, "dataset.tables", "\"" + name + "\" is not a table of the experiment (it writes: " + names + ")");
+    }
+    kept.push_back(std::move(*it));
+  }
+  return kept;
+}
+
+// A finished part of this dataset holding `index`, or false if absent or
+// damaged (then it is recomputed). A part of another dataset is an error.
+bool usable_part(const std::string& path, const DatasetHeader& expect, std::int64_t index, const std::string& dir) {
+  if (!fs::exists(path)) return false;
+  std::unique_ptr<DatasetReader> r;
+  try {
+    r = std::make_unique<DatasetReader>(path);
+  } catch (const ConfigError& e) {
+    std::fprintf(stderr, "mcref dataset: warning: recomputing a damaged part (%s)\n", e.what());
+    fs::remove(path);
+    return false;
+  }
+  const std::string why = expect.difference(r->header());
+  if (!why.empty())
+    throw ConfigError(dir, "", "holds entries of another dataset (" + why + "); remove it or choose another -o");
+  if (r->indices() != std::vector<std::int64_t>{index}) {
+    fs::remove(path);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+DatasetHeader dataset_header(const DatasetConfig& c, const std::string& shard) {
+  DatasetHeader h;
+  h.mcref_version = mcref_version();
+  h.git_commit = mcref_git_commit();
+  h.seed = c.seed;
+  h.entries = c.entries();
+  h.shard = shard;
+  h.compression = c.compression;
+  h.dataset_config = c.text;
+  h.experiment_config = c.experiment_text;
+  h.experiment_file = c.experiment;
+  h.columns = c.column_names();
+  for (const DatasetParameter& p : c.parameters)
+    if (p.categorical()) h.labels[p.column_names()[0]] = p.labels;
+  return h;
+}
+
+DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o) {
+  DatasetRunSummary s;
+  const std::string shard = o.shards == 1 ? "all" : std::to_string(o.shard) + "/" + std::to_string(o.shards);
+  const DatasetHeader final_header = dataset_header(c, shard);
+  const DatasetHeader part_header = dataset_header(c, "part");
+  // Plan and validate every entry before writing anything.
+  std::vector<EntryPlan> mine;
+  for (std::int64_t i = 0; i < c.entries(); ++i) {
+    EntryPlan plan = plan_entry(c, i);
+    entry_experiment(c, plan);
+    if (i % o.shards == o.shard) mine.push_back(std::move(plan));
+  }
+  s.entries = static_cast<std::int64_t>(mine.size());
+  if (fs::exists(o.output)) {
+    std::string why;
+    try {
+      DatasetReader r(o.output);
+      why = final_header.difference(r.header());
+      if (why.empty() && r.header().shard != shard) why = "it is shard " + r.header().shard + ", not " + shard;
+      if (why.empty() && static_cast<std::int64_t>(r.indices().size()) != s.entries) why = "it is incomplete";
+    } catch (const ConfigError& e) {
+      why = "it is not a readable mcref dataset";
+    }
+    if (!why.empty()) throw ConfigError(o.output, "", "exists and " + why + "; remove it or choose another -o");
+    s.complete = s.up_to_date = true;
+    return s;
+  }
+  const std::string dir = o.output + ".parts";
+  std::vector<const EntryPlan*> pending;
+  for (const EntryPlan& p : mine) {
+    if (usable_part(part_path(dir, p.index), part_header, p.index, dir)) ++s.reused;
+    else pending.push_back(&p);
+  }
+  Progress progress("dataset", static_cast<double>(pending.size()), o.quiet);
+  SimulateOptions sim;
+  sim.threads = o.threads;
+  sim.quiet = true;
+  for (const EntryPlan* p : pending) {
+    if (o.stop_after >= 0 && s.computed >= o.stop_after) break;
+    const Experiment ex = entry_experiment(c, *p);
+    SimulateSummary summary;
+    DatasetEntry e;
+    e.index = p->index;
+    e.seed = p->seed;
+    e.parameters = p->columns;
+    e.assignments = join_lines(p->assignments);
+    e.config = ex.text;
+    e.tables = select_tables(c, mcref::simulate(ex, sim, &summary));
+    fs::create_directories(dir);
+    DatasetWriter w(part_path(dir, p->index), part_header);
+    w.add(e);
+    w.commit();
+    ++s.computed;
+    s.rays += summary.rays;
+    progress.advance(1);
+  }
+  progress.finish();
+  s.seconds = progress.elapsed_seconds();
+  if (s.computed + s.reused < s.entries) return s;
+  {
+    DatasetWriter w(o.output, final_header);
+    for (const EntryPlan& p : mine) w.add(DatasetReader(part_path(dir, p.index)).entry(p.index));
+    w.commit();
+  }
+  std::error_code ec;
+  for (const EntryPlan& p : mine) fs::remove(part_path(dir, p.index), ec);
+  // Temporary files of interrupted part writes; anything else stays, and so does the directory.
+  if (fs::is_directory(dir, ec))
+    for (const auto& f : fs::directory_iterator(dir, ec))
+      if (f.path().filename().string().rfind("entry-", 0) == 0 && f.path().filename().string().find(".h5.tmp.") != std::string::npos)
+        fs::remove(f.path(), ec);
+  fs::remove(dir, ec);
+  s.complete = true;
+  return s;
+}
+
+std::int64_t merge_datasets(const std::vector<std::string>& inputs, const std::string& output, bool quiet) {
+  if (inputs.empty()) throw ConfigError("command line", "", "mcref merge needs at least one shard file");
+  std::vector<std::unique_ptr<DatasetReader>> shards;
+  for (const std::string& in : inputs) shards.push_back(std::make_unique<DatasetReader>(in));
+  const DatasetHeader& first = shards[0]->header();
+  for (std::size_t k = 1; k < shards.size(); ++k) {
+    const std::string why = first.difference(shards[k]->header());
+    if (!why.empty()) throw ConfigError(inputs[k], "", "does not belong with " + inputs[0] + ": " + why);
+  }
+  const std::int64_t n = first.entries;
+  std::vector<int> owner(static_cast<std::size_t>(n), -1);
+  for (std::size_t k = 0; k < shards.size(); ++k)
+    for (std::int64_t i : shards[k]->indices()) {
+      if (i < 0 || i >= n) throw ConfigError(inputs[k], "", "holds entry " + std::to_string(i) + " outside [0, " + std::to_string(n) + ")");
+      int& o = owner[static_cast<std::size_t>(i)];
+      if (o >= 0)
+        throw ConfigError(inputs[k], "", "overlaps with " + inputs[static_cast<std::size_t>(o)] + ": both hold entry " +
+                                             std::to_string(i) + " (each shard K/N must be given once)");
+      o = static_cast<int>(k);
+    }
+  std::vector<std::int64_t> missing;
+  for (std::int64_t i = 0; i < n; ++i)
+    if (owner[static_cast<std::size_t>(i)] < 0) missing.push_back(i);
+  if (!missing.empty()) {
+    std::string list;
+    for (std::size_t j = 0; j < std::min<std::size_t>(missing.size(), 8); ++j)
+      list += (j ? ", " : "") + std::to_string(missing[j]);
+    throw ConfigError(output, "", std::to_string(missing.size()) + " of " + std::to_string(n) +
+                                      " entries are missing from the shards given (entries " + list +
+                                      (missing.size() > 8 ? ", ..." : "") + "); merge every shard K/N, K = 0..N-1");
+  }
+  DatasetHeader h = first;
+  h.shard = "all";
+  Progress progress("merge", static_cast<double>(n), quiet);
+  DatasetWriter w(output, h);
+  for (std::int64_t i = 0; i < n; ++i) {
+    w.add(shards[static_cast<std::size_t>(owner[static_cast<std::size_t>(i)])]->entry(i));
+    progress.advance(1);
+  }
+  w.commit();
+  progress.finish();
+  return n;
+}
+
+}  // namespace mcref
