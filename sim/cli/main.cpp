@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
     if (verb == "export-vdb") return mcref::cli::export_vdb(args);
     if (verb == "dataset") return mcref::cli::dataset(args, command_line);
     if (verb == "merge") return mcref::cli::merge(args);
-    std::fprintf(stderr, "mcref: error: unknown verb '%s' (allowed: simulate, validate, info)\n", verb.c_str());
+    std::fprintf(stderr, "mcref: error: unknown verb '%s' (allowed: simulate, validate, info, export-vdb, dataset, merge)\n", verb.c_str());
     return 2;
   } catch (const mcref::ConfigError& e) {
     std::fprintf(stderr, "mcref: error: %s\n", e.what());

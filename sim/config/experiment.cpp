@@ -82,7 +82,6 @@ Measure read_measure(const toml::table& t, const Experiment& e, std::size_t inde
   out.quantity = m.string("quantity", known_quantities(e.kind));
   out.name = m.any_string("name", out.quantity);
   const Range theta{0, 90, false, true}, azimuth{-360, 360, false, false};
-  const Range positive_theta{0, 90, false, true};
   const bool aniso = !e.isotropic;
   out.samples = m.integer("samples", 1, kMaxCount);
   const std::string& q = out.quantity;
@@ -107,7 +106,7 @@ Measure read_measure(const toml::table& t, const Experiment& e, std::size_t inde
     out.theta_o = to_radians(m.numbers("theta_o_deg", theta));
     out.phi = to_radians(m.numbers("phi_deg", {-360, 360, false, false}, std::vector<double>{0.0, 90.0, 180.0}));
   } else {
-    out.theta_i = to_radians(m.numbers("theta_i_deg", q == "tau_plus" ? theta : theta));
+    out.theta_i = to_radians(m.numbers("theta_i_deg", theta));
     out.phi_i = to_radians(m.numbers("phi_i_deg", azimuth, std::vector<double>{0.0}));
     if (q == "tau_height") out.h_points = static_cast<int>(m.integer("h_points", 2, 100000, 21));
     if (q == "g1" || q == "vndf") {

@@ -8,8 +8,8 @@
 #include <stdexcept>
 
 #include "sim/config/config_error.h"
-#include "sim/dataset/h5_util.h"
-#include "sim/dataset/table_io.h"
+#include "sim/io/h5_util.h"
+#include "sim/io/table_group.h"
 #include "sim/io/table_file.h"
 
 namespace mcref {

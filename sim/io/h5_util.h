@@ -1,5 +1,5 @@
 #pragma once
-// Small HDF5 helpers for dataset files (sim/dataset). Every object is created
+// Small HDF5 helpers for mcref files (tables and datasets). Every object is created
 // without time tracking (H5Pset_obj_track_times false), so the bytes of a
 // file depend only on what is written and in which order: two runs that write
 // the same content in the same order give bit-identical files.

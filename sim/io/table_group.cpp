@@ -1,4 +1,4 @@
-#include "sim/dataset/table_io.h"
+#include "sim/io/table_group.h"
 
 #include <hdf5_hl.h>
 
@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "sim/dataset/h5_util.h"
+#include "sim/io/h5_util.h"
 
 namespace mcref {
 

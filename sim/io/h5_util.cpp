@@ -1,4 +1,4 @@
-#include "sim/dataset/h5_util.h"
+#include "sim/io/h5_util.h"
 
 #include <cstring>
 #include <stdexcept>
