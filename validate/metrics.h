@@ -15,7 +15,7 @@ struct Comparison {
   double max_rel_error = 0;      // max |sim - model| / |model| over cells with signal
   double rms_rel_error = 0;
   std::size_t signal_cells = 0;  // cells with |sim| > 5 stderr
-  std::size_t exact_cells = 0;   // zero-variance cells where sim equals the model (to 1e-9)
+  std::size_t exact_cells = 0;   // zero-variance cells where sim equals the model (to 1e-6 relative)
   std::size_t mismatched_exact_cells = 0;  // zero-variance cells where they differ
   std::vector<double> z;         // per cell (NaN where not compared)
   double chi2_per_dof() const { return cells ? chi2 / static_cast<double>(cells) : 0; }
