@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "validate/statistics.h"
+#include "sim/core/statistics.h"
 
 namespace mcref {
 

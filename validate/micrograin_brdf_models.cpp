@@ -113,12 +113,6 @@ void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& m
   }
 }
 
-std::size_t axis_of(const Table& t, const std::string& name) {
-  for (std::size_t d = 0; d < t.axes.size(); ++d)
-    if (t.axes[d].name == name) return d;
-  throw std::invalid_argument("table " + t.name + " has no axis " + name);
-}
-
 std::vector<double> evaluate_brdf(const Spec& s, const Table& t, const Experiment& ex, const mg::GrainField& f) {
   std::vector<double> out(t.cells(), NAN);
   const Axis &ti = t.axes[0], &pi = t.axes[1], &to = t.axes[2], &ph = t.axes[3];

@@ -13,7 +13,10 @@
 #include "models/micrograin/unit_space.h"
 #include "models/micrograin/visible_filling_factor.h"
 #include "models/micrograin/visible_ndf.h"
+#include "models/micrograin/vndf_sampler.h"
 #include "sim/core/quadrature.h"
+#include "sim/core/rng.h"
+#include "sim/estimators/estimator.h"
 
 namespace mcref {
 
@@ -42,27 +45,13 @@ std::vector<ModelInfo> geometry_model_list() {
       {"pore_visibility_independence_eq24", "pore_visibility", false,
        "independent visibilities, V(i) V(o): the assumption behind w+ (LRPB23 Eq. 23-24)"},
       {"vndf_eq13", "vndf", true, "visible NDF with height-correlated masking (vNDF paper Eq. 6/11-13)"},
+      {"vndf_sampler", "vndf", false,
+       "histogram of the vNDF sampler (vNDF paper Sec. 4, Listings 1-4; theta by the tabulated sigma^-1, phi by "
+       "Newton inversion of Eq. 22), 2e6 samples per incident direction, binned and folded as the simulation: the "
+       "paper's Fig. 5 check (approximate: 1024 x 1024 table; carries its own Monte Carlo noise)"},
   };
   for (ModelInfo& m : models) m.kind = "micrograin";
   return models;
-}
-
-// Calls fn(flat index, multi-index) for every cell, row-major.
-void for_each_cell(const Table& t, const std::function<void(std::size_t, const std::vector<std::size_t>&)>& fn) {
-  std::vector<std::size_t> idx(t.axes.size(), 0);
-  for (std::size_t flat = 0; flat < t.cells(); ++flat) {
-    fn(flat, idx);
-    for (std::size_t d = t.axes.size(); d-- > 0;) {
-      if (++idx[d] < t.axes[d].size()) break;
-      idx[d] = 0;
-    }
-  }
-}
-
-std::size_t axis_index(const Table& t, const std::string& name) {
-  for (std::size_t d = 0; d < t.axes.size(); ++d)
-    if (t.axes[d].name == name) return d;
-  throw std::invalid_argument("table " + t.name + " has no axis " + name);
 }
 
 // Weighted average of f over a (theta, phi) cell: int f w sin / int w sin,
@@ -84,6 +73,60 @@ double cell_average(double t0, double t1, double p0, double p1, int n,
     }
   }
   return den > 0 ? num / den : NAN;
+}
+
+// The "vndf_sampler" model: per incident direction of the table, kVndfSamplerSamples
+// normals from micrograin::VndfSampler::sample (real-space i in, real-space m
+// out), histogrammed into the (theta_m, phi_m_rel) cells exactly as
+// sim/estimators/vndf.cpp does (relative azimuth folded into [0, pi] for
+// isotropic fields; value = count / (samples * fold * solid angle), a density
+// per steradian over all samples). Random streams: run_chunks with key
+// stream_seed({kVndfSamplerSeed, direction index}), the direction index
+// counting (theta_i, phi_i) row-major as the estimator does, so the histogram
+// is fixed and independent of the thread count.
+constexpr std::uint64_t kVndfSamplerSamples = 2000000;
+constexpr std::uint64_t kVndfSamplerSeed = 0x766e64665f736d70ULL;  // "vndf_smp"
+
+std::vector<double> vndf_sampler_histogram(const Table& t, const MicrograinGeometry& geometry) {
+  static const mg::VndfSampler sampler;  // sigma^-1 table, built once (~0.3 s)
+  const mg::GrainField f{geometry.tau0, geometry.beta_x, geometry.beta_y};
+  const bool folded = !geometry.anisotropic();
+  const std::size_t dti = axis_index(t, "theta_i"), dpi = axis_index(t, "phi_i");
+  const std::size_t dth = axis_index(t, "theta_m"), dph = axis_index(t, "phi_m_rel");
+  const Axis& ti = t.axes[dti];
+  const Axis& pi = t.axes[dpi];
+  const Axis& th = t.axes[dth];
+  const Axis& ph = t.axes[dph];
+  const std::size_t cells = th.size() * ph.size();
+  const double fold = folded ? 2.0 : 1.0;
+  std::vector<double> out(t.cells(), NAN);
+  std::uint64_t dir = 0;
+  for (std::size_t a = 0; a < ti.size(); ++a)
+    for (std::size_t b = 0; b < pi.size(); ++b, ++dir) {
+      const double phi_i = pi.values[b];
+      const Vec3 wi = spherical_direction(ti.values[a], phi_i);
+      const Sums acc = run_chunks(kVndfSamplerSamples, cells, stream_seed({kVndfSamplerSeed, dir}),
+                                  [&](Rng& rng, std::uint64_t n, Sums& s) {
+                                    for (std::uint64_t k = 0; k < n; ++k) {
+                                      const double u1 = rng.uniform(), u2 = rng.uniform();
+                                      const Vec3 m = sampler.sample(f, wi, u1, u2);
+                                      const int c = th.find_bin(spherical_theta(m));
+                                      const int d = ph.find_bin(relative_azimuth(spherical_phi(m), phi_i, folded));
+                                      if (c >= 0 && d >= 0) s[c * ph.size() + d] += 1;
+                                    }
+                                  });
+      std::vector<std::size_t> idx(t.axes.size(), 0);
+      idx[dti] = a;
+      idx[dpi] = b;
+      for (std::size_t c = 0; c < th.size(); ++c)
+        for (std::size_t d = 0; d < ph.size(); ++d) {
+          idx[dth] = c;
+          idx[dph] = d;
+          const double w = fold * cell_solid_angle(th.lower(c), th.upper(c), ph.lower(d), ph.upper(d));
+          out[t.index(idx)] = acc[c * ph.size() + d] / (static_cast<double>(kVndfSamplerSamples) * w);
+        }
+    }
+  return out;
 }
 
 double phi_i_of(const Table& t, const std::vector<std::size_t>& idx) {
@@ -175,6 +218,10 @@ std::vector<double> evaluate_geometry_model(const std::string& model, const Tabl
       out[k] = ((1 - mg::tau_plus(f, wi)) / open) * ((1 - mg::tau_plus(f, wo)) / open);
     });
     return out;
+  }
+  if (model == "vndf_sampler") {
+    if (t.quantity != "vndf") throw std::invalid_argument("model vndf_sampler predicts vndf tables only");
+    return vndf_sampler_histogram(t, geometry);
   }
   if (t.quantity == "vndf" || t.quantity == "g1_conditional") {
     const std::size_t dth = axis_index(t, "theta_m"), dph = axis_index(t, "phi_m_rel");

@@ -12,6 +12,23 @@ const std::vector<const ModelFamily*>& families() {
 }
 }  // namespace
 
+void for_each_cell(const Table& t, const std::function<void(std::size_t, const std::vector<std::size_t>&)>& fn) {
+  std::vector<std::size_t> idx(t.axes.size(), 0);
+  for (std::size_t flat = 0; flat < t.cells(); ++flat) {
+    fn(flat, idx);
+    for (std::size_t d = t.axes.size(); d-- > 0;) {
+      if (++idx[d] < t.axes[d].size()) break;
+      idx[d] = 0;
+    }
+  }
+}
+
+std::size_t axis_index(const Table& t, const std::string& name) {
+  for (std::size_t d = 0; d < t.axes.size(); ++d)
+    if (t.axes[d].name == name) return d;
+  throw std::invalid_argument("table " + t.name + " has no axis " + name);
+}
+
 std::vector<ModelInfo> models_for(const std::string& quantity, const std::string& kind) {
   std::vector<ModelInfo> out;
   for (const ModelFamily* f : families())

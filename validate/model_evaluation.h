@@ -30,6 +30,11 @@ struct ModelFamily {
   ModelEvaluator evaluate;
 };
 
+// Calls fn(flat index, multi-index) for every cell of a table, row-major.
+void for_each_cell(const Table& t, const std::function<void(std::size_t, const std::vector<std::size_t>&)>& fn);
+// Index of the axis called `name` (std::invalid_argument if none).
+std::size_t axis_index(const Table& t, const std::string& name);
+
 // The families (each defined in its own file).
 const ModelFamily& micrograin_geometry_models();
 const ModelFamily& micrograin_brdf_models();

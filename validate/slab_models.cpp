@@ -110,18 +110,12 @@ std::vector<double> drop_duplicate_channels(const SlabGeometry& g, std::vector<d
   return v;
 }
 
-std::size_t axis_of(const Table& t, const std::string& name) {
-  for (std::size_t d = 0; d < t.axes.size(); ++d)
-    if (t.axes[d].name == name) return d;
-  throw std::invalid_argument("table " + t.name + " has no axis " + name);
-}
-
 // Cosine-weighted average of f(wi, wo) over every (theta_o, phi) bin, all
 // channels: composite Gauss-Legendre in |cos theta_o| and phi (sub x sub
 // sub-cells of an n x n rule), since the bins are uniform in |cos theta_o|.
 std::vector<double> bin_averages(const Table& t, const std::function<double(int, Vec3, Vec3)>& f) {
-  const std::size_t dti = axis_of(t, "theta_i"), dpi = axis_of(t, "phi_i"), dto = axis_of(t, "theta_o"),
-                    dph = axis_of(t, "phi"), dch = axis_of(t, "channel");
+  const std::size_t dti = axis_index(t, "theta_i"), dpi = axis_index(t, "phi_i"), dto = axis_index(t, "theta_o"),
+                    dph = axis_index(t, "phi"), dch = axis_index(t, "channel");
   const Axis &ti = t.axes[dti], &pi = t.axes[dpi], &to = t.axes[dto], &ph = t.axes[dph];
   static const GaussLegendre rule(8);
   const int sub = 4;

@@ -162,26 +162,8 @@ std::vector<double> volumetric_values(const Table& t, const Experiment& ex) {
   throw std::invalid_argument("volumetric_mc: the volumetric run has no table " + t.name);
 }
 
-int axis_of(const Table& t, const std::string& name) {
-  for (std::size_t k = 0; k < t.axes.size(); ++k)
-    if (t.axes[k].name == name) return static_cast<int>(k);
-  throw std::invalid_argument("table " + t.name + " has no axis " + name);
-}
-
-// Calls fn(flat, idx) for every cell, row-major.
-void for_each_cell(const Table& t, const std::function<void(std::size_t, const std::vector<std::size_t>&)>& fn) {
-  std::vector<std::size_t> idx(t.axes.size(), 0);
-  for (std::size_t flat = 0; flat < t.cells(); ++flat) {
-    fn(flat, idx);
-    for (std::size_t d = t.axes.size(); d-- > 0;) {
-      if (++idx[d] < t.axes[d].size()) break;
-      idx[d] = 0;
-    }
-  }
-}
-
 std::vector<double> phase_values(const Table& t) {
-  const Axis& mu = t.axes[axis_of(t, "mu")];
+  const Axis& mu = t.axes[axis_index(t, "mu")];
   std::vector<double> v(t.cells());
   // Bin average of 2 pi p(mu) = (F(b) - F(a)) / (b - a), with 1 - F from the
   // forward-accurate complement.
@@ -191,7 +173,7 @@ std::vector<double> phase_values(const Table& t) {
 }
 
 std::vector<double> brdf_values(const BrdfFn& f, const Table& t, const Experiment& ex) {
-  const int ai = axis_of(t, "theta_i"), ao = axis_of(t, "theta_o"), ap = axis_of(t, "phi"), ac = axis_of(t, "channel");
+  const int ai = axis_index(t, "theta_i"), ao = axis_index(t, "theta_o"), ap = axis_index(t, "phi"), ac = axis_index(t, "channel");
   static const GaussLegendre gl(8);
   std::vector<double> v(t.cells());
   std::map<std::vector<std::size_t>, double> memo;  // (theta_i, theta_o, phi, channel) -> value
@@ -225,7 +207,7 @@ std::vector<double> brdf_values(const BrdfFn& f, const Table& t, const Experimen
 // Directional albedo: \int f mu_o d omega_o, 24 x 24 Gauss-Legendre in
 // (mu_o, phi in [0, pi]) times 2, on the total-component cells.
 std::vector<double> albedo_values(const BrdfFn& f, const Table& t, const Experiment& ex) {
-  const int ai = axis_of(t, "theta_i"), acomp = axis_of(t, "component"), ac = axis_of(t, "channel");
+  const int ai = axis_index(t, "theta_i"), acomp = axis_index(t, "component"), ac = axis_index(t, "channel");
   static const GaussLegendre gl(24);
   const std::size_t total = t.axes[acomp].size() - 1;
   std::vector<double> v(t.cells(), NAN);

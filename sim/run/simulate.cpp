@@ -12,6 +12,13 @@ double work_units(const Measure& m) {
   return static_cast<double>(m.samples) * static_cast<double>(std::max<std::size_t>(1, dirs));
 }
 
+std::vector<Table> flatten(std::vector<std::vector<Table>>&& per_measure) {
+  std::vector<Table> out;
+  for (auto& group : per_measure)
+    for (auto& t : group) out.push_back(std::move(t));
+  return out;
+}
+
 std::vector<Table> simulate(const Experiment& ex, const SimulateOptions& options, SimulateSummary* summary) {
   const int threads = options.threads > 0 ? options.threads
                                           : (ex.run.threads > 0 ? ex.run.threads : tbb::info::default_concurrency());

@@ -12,6 +12,8 @@ namespace mcref {
 
 // Work units of one batch of one measure (samples x directions), for progress.
 double work_units(const Measure& m);
+// The tables of every measure, in measure order, as one list.
+std::vector<Table> flatten(std::vector<std::vector<Table>>&& per_measure);
 
 std::vector<Table> simulate_micrograin(const Experiment& ex, Progress& progress, std::size_t* grains);
 std::vector<Table> simulate_slab(const Experiment& ex, Progress& progress);

@@ -23,10 +23,7 @@ std::vector<Table> simulate_micrograin(const Experiment& ex, Progress& progress,
       progress.advance(work_units(m));
     }
   }
-  std::vector<Table> out;
-  for (auto& group : tables)
-    for (auto& t : group) out.push_back(std::move(t));
-  return out;
+  return flatten(std::move(tables));
 }
 
 }  // namespace mcref

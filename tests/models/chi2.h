@@ -7,6 +7,8 @@
 // failure. Header-only, for tests/models/test_*.cpp.
 #include <algorithm>
 #include <cmath>
+
+#include "sim/core/statistics.h"
 #include <cstdint>
 #include <numeric>
 #include <sstream>
@@ -19,53 +21,10 @@
 
 namespace mcref::test {
 
-// Regularised lower incomplete gamma P(a, x) by its series (x < a + 1).
-inline double gamma_p_series(double a, double x) {
-  double sum = 1.0 / a, term = sum;
-  for (int n = 1; n < 100000; ++n) {
-    term *= x / (a + n);
-    sum += term;
-    if (std::fabs(term) < std::fabs(sum) * 1e-16) break;
-  }
-  return sum * std::exp(-x + a * std::log(x) - std::lgamma(a));
-}
-
-// Regularised upper incomplete gamma Q(a, x) by its continued fraction
-// (modified Lentz; x >= a + 1).
-inline double gamma_q_continued_fraction(double a, double x) {
-  const double tiny = 1e-300;
-  double b = x + 1 - a, c = 1 / tiny, d = 1 / b, h = d;
-  for (int i = 1; i < 100000; ++i) {
-    const double an = -i * (i - a);
-    b += 2;
-    d = an * d + b;
-    if (std::fabs(d) < tiny) d = tiny;
-    c = b + an / c;
-    if (std::fabs(c) < tiny) c = tiny;
-    d = 1 / d;
-    const double del = d * c;
-    h *= del;
-    if (std::fabs(del - 1) < 1e-16) break;
-  }
-  return std::exp(-x + a * std::log(x) - std::lgamma(a)) * h;
-}
-
-// Q(a, x) = Gamma(a, x) / Gamma(a), a > 0, x >= 0.
-inline double regularized_gamma_q(double a, double x) {
-  if (x <= 0) return 1.0;
-  return x < a + 1 ? 1.0 - gamma_p_series(a, x) : gamma_q_continued_fraction(a, x);
-}
-
-// P(a, x) = 1 - Q(a, x).
-inline double regularized_gamma_p(double a, double x) {
-  if (x <= 0) return 0.0;
-  return x < a + 1 ? gamma_p_series(a, x) : 1.0 - gamma_q_continued_fraction(a, x);
-}
-
-// Survival function of the chi-square distribution with `dof` degrees of freedom.
-inline double chi2_survival(double statistic, int dof) {
-  return regularized_gamma_q(0.5 * dof, 0.5 * statistic);
-}
+// The incomplete gamma and chi-squared survival live in sim/core/statistics.h.
+using mcref::regularized_gamma_p;
+using mcref::regularized_gamma_q;
+inline double chi2_survival(double statistic, int dof) { return mcref::chi2_survival(statistic, dof); }
 
 // Šidák-corrected per-test significance for `tests` independent tests at
 // family-wise level `alpha`.

@@ -12,6 +12,8 @@
 // SGGX cases of this family (alpha >= 0.1): cell errors <= 3e-3 sqrt(expected).
 #include <algorithm>
 #include <cmath>
+
+#include "sim/core/statistics.h"
 #include <cstdint>
 #include <limits>
 #include <sstream>
@@ -25,45 +27,9 @@
 
 namespace mcref::sggx_test {
 
-// Regularised lower incomplete gamma P(a, x) by its series (x < a + 1).
-inline double gamma_p_series(double a, double x) {
-  double term = 1.0 / a, sum = term;
-  for (int n = 1; n < 100000; ++n) {
-    term *= x / (a + n);
-    sum += term;
-    if (std::fabs(term) < std::fabs(sum) * 1e-16) break;
-  }
-  return sum * std::exp(-x + a * std::log(x) - std::lgamma(a));
-}
-
-// Regularised upper incomplete gamma Q(a, x) by Lentz's continued fraction (x >= a + 1).
-inline double gamma_q_continued_fraction(double a, double x) {
-  const double tiny = 1e-300;
-  double b = x + 1 - a, c = 1 / tiny, d = 1 / b, h = d;
-  for (int i = 1; i < 100000; ++i) {
-    const double an = -i * (i - a);
-    b += 2;
-    d = an * d + b;
-    if (std::fabs(d) < tiny) d = tiny;
-    c = b + an / c;
-    if (std::fabs(c) < tiny) c = tiny;
-    d = 1 / d;
-    const double delta = d * c;
-    h *= delta;
-    if (std::fabs(delta - 1) < 1e-16) break;
-  }
-  return std::exp(-x + a * std::log(x) - std::lgamma(a)) * h;
-}
-
-// Q(a, x) = Gamma(a, x) / Gamma(a), a > 0, x >= 0.
-inline double regularized_gamma_q(double a, double x) {
-  if (x <= 0) return 1.0;
-  if (x < a + 1) return 1.0 - gamma_p_series(a, x);
-  return gamma_q_continued_fraction(a, x);
-}
-
-// Probability that a chi-square variable with `dof` degrees of freedom exceeds `chi2`.
-inline double chi2_survival(double chi2, double dof) { return regularized_gamma_q(0.5 * dof, 0.5 * chi2); }
+// The incomplete gamma and chi-squared survival live in sim/core/statistics.h.
+using mcref::regularized_gamma_q;
+using mcref::chi2_survival;
 
 // Per-test significance so that n_tests independent tests have family-wise level alpha.
 inline double sidak_significance(double alpha, int n_tests) {

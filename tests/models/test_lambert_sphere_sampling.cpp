@@ -4,7 +4,7 @@
 // density (edges F^{-1}(k/B) from the exact CDF), fixed seeds, N = 10^6
 // samples, significance 0.01 for the file, Sidak-corrected over its 2 chi^2
 // tests that must pass (Eq. 5 at 10^6, Eq. 6 at 10^5): alpha = 1 - 0.99^(1/2). p-value from the chi^2 distribution,
-// Q(dof/2, chi^2/2), with a local regularised incomplete gamma function.
+// Q(dof/2, chi^2/2), the regularised incomplete gamma of sim/core/statistics.h.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +16,7 @@
 #include "models/lambert_sphere/phase_function.h"
 #include "models/lambert_sphere/phase_sampling.h"
 #include "sim/core/rng.h"
+#include "sim/core/statistics.h"
 #include "sim/core/vec.h"
 
 namespace ls = mcref::lambert_sphere;
@@ -27,36 +28,9 @@ void record(const std::string& key, double value) {
   std::printf("[measured] %s = %.6g\n", key.c_str(), value);
 }
 
-// Upper regularised incomplete gamma Q(a, x) = Gamma(a, x) / Gamma(a):
-// series for x < a + 1, Lentz continued fraction otherwise (Numerical Recipes 6.2).
-double gamma_q(double a, double x) {
-  if (x <= 0) return 1.0;
-  const double lg = std::lgamma(a);
-  if (x < a + 1) {
-    double term = 1 / a, sum = term;
-    for (int n = 1; n < 10000; ++n) {
-      term *= x / (a + n);
-      sum += term;
-      if (std::fabs(term) < std::fabs(sum) * 1e-16) break;
-    }
-    return 1 - sum * std::exp(-x + a * std::log(x) - lg);
-  }
-  const double tiny = 1e-300;
-  double b = x + 1 - a, c = 1 / tiny, d = 1 / b, h = d;
-  for (int i = 1; i < 10000; ++i) {
-    const double an = -i * (i - a);
-    b += 2;
-    d = an * d + b;
-    if (std::fabs(d) < tiny) d = tiny;
-    c = b + an / c;
-    if (std::fabs(c) < tiny) c = tiny;
-    d = 1 / d;
-    const double del = d * c;
-    h *= del;
-    if (std::fabs(del - 1) < 1e-16) break;
-  }
-  return std::exp(-x + a * std::log(x) - lg) * h;
-}
+// Q(a, x), the regularised upper incomplete gamma of sim/core/statistics.h.
+using mcref::regularized_gamma_q;
+const auto gamma_q = [](double a, double x) { return regularized_gamma_q(a, x); };
 
 struct Chi2 {
   double statistic = 0, p_value = 1;

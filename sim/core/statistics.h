@@ -1,13 +1,16 @@
-#include "validate/statistics.h"
-
+#pragma once
+// Distribution functions for statistical tests and verdicts: normal,
+// Student t, chi-squared, Sidak bounds. Header-only (used by validate/ and tests).
 #include <cmath>
 #include <limits>
 
+#include "sim/core/vec.h"
+
 namespace mcref {
 
-double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
+inline double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
 
-double normal_quantile(double p) {
+inline double normal_quantile(double p) {
   if (p <= 0) return -std::numeric_limits<double>::infinity();
   if (p >= 1) return std::numeric_limits<double>::infinity();
   // Acklam's rational approximation, then two Newton steps on erfc.
@@ -35,15 +38,15 @@ double normal_quantile(double p) {
   }
   for (int it = 0; it < 2; ++it) {
     const double e = normal_cdf(x) - p;
-    const double u = e * std::sqrt(2 * M_PI) * std::exp(x * x / 2);
+    const double u = e * std::sqrt(2 * kPi) * std::exp(x * x / 2);
     x -= u / (1 + x * u / 2);
   }
   return x;
 }
 
-namespace {
+namespace detail {
 // Continued fraction for the incomplete beta (Lentz).
-double beta_fraction(double x, double a, double b) {
+inline double beta_fraction(double x, double a, double b) {
   const double tiny = 1e-300;
   double c = 1, d = 1 - (a + b) * x / (a + 1);
   if (std::fabs(d) < tiny) d = tiny;
@@ -70,17 +73,17 @@ double beta_fraction(double x, double a, double b) {
   }
   return h;
 }
-}  // namespace
+}  // namespace detail
 
-double regularized_beta(double x, double a, double b) {
+inline double regularized_beta(double x, double a, double b) {
   if (x <= 0) return 0;
   if (x >= 1) return 1;
   const double ln_front = std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log1p(-x);
-  if (x < (a + 1) / (a + b + 2)) return std::exp(ln_front) * beta_fraction(x, a, b) / a;
-  return 1 - std::exp(ln_front) * beta_fraction(1 - x, b, a) / b;
+  if (x < (a + 1) / (a + b + 2)) return std::exp(ln_front) * detail::beta_fraction(x, a, b) / a;
+  return 1 - std::exp(ln_front) * detail::beta_fraction(1 - x, b, a) / b;
 }
 
-double regularized_gamma_q(double a, double x) {
+inline double regularized_gamma_q(double a, double x) {
   if (x <= 0) return 1;
   const double ln_front = -x + a * std::log(x) - std::lgamma(a);
   if (x < a + 1) {  // series for P
@@ -110,17 +113,21 @@ double regularized_gamma_q(double a, double x) {
   return std::exp(ln_front) * h;
 }
 
-double student_t_cdf(double t, double nu) {
+inline double student_t_cdf(double t, double nu) {
   const double x = nu / (nu + t * t);
   const double tail = 0.5 * regularized_beta(x, nu / 2, 0.5);
   return t >= 0 ? 1 - tail : tail;
 }
 
-double chi2_survival(double x, double k) { return regularized_gamma_q(k / 2, x / 2); }
+inline double chi2_survival(double x, double k) { return regularized_gamma_q(k / 2, x / 2); }
 
-double sidak_z_bound(double alpha, double n) {
+inline double sidak_z_bound(double alpha, double n) {
   const double per_cell = -std::expm1(std::log1p(-alpha) / n);
   return normal_quantile(1 - per_cell / 2);
 }
+
+
+// Regularised lower incomplete gamma P(a, x) = 1 - Q(a, x).
+inline double regularized_gamma_p(double a, double x) { return 1 - regularized_gamma_q(a, x); }
 
 }  // namespace mcref
