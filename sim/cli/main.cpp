@@ -1,4 +1,4 @@
-// mcref: the command-line front end. Verbs: simulate, validate, info.
+// mcref: the command-line front end; one file per verb (sim/cli/*_verb.cpp).
 #include <cstdio>
 #include <cstring>
 #include <exception>

@@ -3,9 +3,9 @@
 //   [geometry]
 //   kind = "slab"
 //   substrate = "none" | "lambertian" | "conductor" | "rough_conductor"   (default none)
-//   substrate_albedo = 0.8 | [r, g, b]          lambertian
-//   substrate_eta, substrate_k = [r, g, b]      conductors (complex IOR)
-//   substrate_alpha = 0.3                       rough_conductor (GGX)
+//   substrate_albedo = 1.0 | [r, g, b]          lambertian (default 1)
+//   substrate_eta = 0.2, substrate_k = 3.9       conductors: complex IOR, one value or [r, g, b]
+//   substrate_alpha                             rough_conductor (GGX), required
 //   delta_transmission = true                   record the unscattered transmission
 //   backend = "homogeneous" | "openvdb"         free-flight sampling (default homogeneous)
 //   tile = 1.0, lateral_voxels = 4, depth_voxels = 32   openvdb grid
