@@ -12,11 +12,13 @@ import itertools
 import json
 import os
 import sys
+import warnings
 
 try:
     import h5py
     import matplotlib
     matplotlib.use("Agg")
+    warnings.filterwarnings("ignore", message=".*converting a masked element to nan.*")
     import matplotlib.pyplot as plt
     import numpy as np
 except ImportError as e:  # pragma: no cover

@@ -49,40 +49,46 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
 
 Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance) {
   char buf[256];
-  if (c.mismatched_exact_cells > 0) {
-    std::snprintf(buf, sizeof buf, "%zu zero-variance cells differ from the model", c.mismatched_exact_cells);
-    return {exact ? "FAIL" : "measured", buf};
-  }
   if (c.cells == 0) {
-    if (c.exact_cells > 0) {
+    // Only zero-variance cells: they decide alone.
+    if (c.exact_cells > 0 && c.mismatched_exact_cells == 0) {
       std::snprintf(buf, sizeof buf, "all %zu cells have zero variance and equal the model", c.exact_cells);
       return {"pass", buf};
     }
+    if (c.mismatched_exact_cells > 0) {
+      std::snprintf(buf, sizeof buf, "%zu zero-variance cells differ from the model", c.mismatched_exact_cells);
+      return {exact ? "FAIL" : "measured", buf};
+    }
     return {"FAIL", "no cell could be compared"};
   }
+  // Zero-variance cells beside cells with error bars (e.g. a rare cell that
+  // stayed empty in every batch) carry no error bar to judge by: noted only.
+  std::string note;
+  if (c.mismatched_exact_cells > 0)
+    note = "; " + std::to_string(c.mismatched_exact_cells) + " zero-variance cells differ from the model (not judged)";
   if (exact) {
     const double bound = sidak_z_bound(alpha, static_cast<double>(c.cells));
     if (c.p_value < alpha) {
       std::snprintf(buf, sizeof buf, "chi2/dof = %.3g over %zu cells, p = %.2g < %.2g", c.chi2_per_dof(), c.cells,
                     c.p_value, alpha);
-      return {"FAIL", buf};
+      return {"FAIL", buf + note};
     }
     if (c.max_abs_z > bound) {
       std::snprintf(buf, sizeof buf, "max |z| = %.2f > %.2f (Sidak bound at %.2g over %zu cells)", c.max_abs_z, bound,
                     alpha, c.cells);
-      return {"FAIL", buf};
+      return {"FAIL", buf + note};
     }
     std::snprintf(buf, sizeof buf, "p = %.2g >= %.2g; max |z| = %.2f <= %.2f", c.p_value, alpha, c.max_abs_z, bound);
-    return {"pass", buf};
+    return {"pass", buf + note};
   }
   if (tolerance > 0) {
     std::snprintf(buf, sizeof buf, "max rel. error %.3g %s tolerance %.3g", c.max_rel_error,
                   c.max_rel_error <= tolerance ? "<=" : ">", tolerance);
-    return {c.max_rel_error <= tolerance ? "pass" : "FAIL", buf};
+    return {c.max_rel_error <= tolerance ? "pass" : "FAIL", buf + note};
   }
   std::snprintf(buf, sizeof buf, "max rel. error %.3g, rms %.3g (approximate model, no tolerance set)",
                 c.max_rel_error, c.rms_rel_error);
-  return {"measured", buf};
+  return {"measured", buf + note};
 }
 
 }  // namespace mcref
