@@ -14,9 +14,18 @@
 #include <functional>
 #include <vector>
 
+#include "sim/core/rng.h"
 #include "sim/core/vec.h"
 
 namespace mcref {
+
+// Random stream of a realization's grain centres: stream_seed({run seed,
+// realization, kGeometryStream}) (measures use their own index instead).
+inline constexpr std::uint64_t kGeometryStream = 0xFFFFFFFFull;
+// The seed of realization `realization` of a run (simulate and export-vdb).
+inline std::uint64_t micrograin_realization_seed(std::uint64_t run_seed, std::uint64_t realization) {
+  return stream_seed({run_seed, realization, kGeometryStream});
+}
 
 struct MicrograinGeometry {
   double tau0 = 0.5;     // filling factor (LRPB23 Eq. 13), in (0, 1)

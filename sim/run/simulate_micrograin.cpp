@@ -5,16 +5,11 @@
 
 namespace mcref {
 
-namespace {
-// Stream tag of the geometry of a realization (measures use their index).
-constexpr std::uint64_t kGeometryStream = 0xFFFFFFFFull;
-}  // namespace
-
 std::vector<Table> simulate_micrograin(const Experiment& ex, Progress& progress, std::size_t* grains) {
   std::vector<std::vector<Table>> tables;
   for (const Measure& m : ex.measures) tables.push_back(estimator_for(m.quantity).make_tables(m, ex));
   for (int b = 0; b < ex.run.batches; ++b) {
-    const MicrograinField field(ex.micrograin, stream_seed({ex.run.seed, static_cast<std::uint64_t>(b), kGeometryStream}));
+    const MicrograinField field(ex.micrograin, micrograin_realization_seed(ex.run.seed, static_cast<std::uint64_t>(b)));
     if (grains) *grains = field.grain_count();
     for (std::size_t k = 0; k < ex.measures.size(); ++k) {
       const Measure& m = ex.measures[k];

@@ -10,11 +10,6 @@
 
 namespace mcref {
 
-namespace {
-// Stream tag of the geometry of a realization (measures use their index).
-constexpr std::uint64_t kGeometryStream = 0xFFFFFFFFull;
-}  // namespace
-
 std::vector<Table> simulate_spheres(const Experiment& ex, Progress& progress) {
   std::vector<std::vector<Table>> tables;
   bool needs_field = false;

@@ -18,7 +18,11 @@ SlabMedium::SlabMedium(const SlabGeometry& g) : geometry_(g) {
   }
   if (g.grid.openvdb) {
     grids_ = std::make_unique<DensityGrids>(g);
-    for (std::size_t k = 0; k < layers_.size(); ++k) layers_[k].majorant = grids_->max_density(k);
+    for (std::size_t k = 0; k < layers_.size(); ++k) {
+      layers_[k].majorant = grids_->max_density(k);
+      layers_[k].sggx_grid = grids_->has_sggx(k);
+      layers_[k].extinction_majorant = grids_->max_density(k) * grids_->max_sigma(k);
+    }
   }
 }
 

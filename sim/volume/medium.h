@@ -16,6 +16,10 @@ struct MediumLayer {
   double top = 0, bottom = 0;  // depths of the faces
   double density = 0;          // homogeneous density (constant profile)
   double majorant = 0;         // max density over the layer (delta tracking)
+  // OpenVDB path, SGGX layers: S(x) read from the grids; delta tracking against
+  // the direction-free majorant max rho * max sqrt(lambda_max(S)) (density_grid.h).
+  bool sggx_grid = false;
+  double extinction_majorant = 0;
   std::unique_ptr<PhaseFunction> phase;
 };
 

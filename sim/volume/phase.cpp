@@ -25,18 +25,7 @@ class SggxFlakes final : public PhaseFunction {
   double sigma(Vec3 w) const override { return sggx::projected_area(s_, w); }
   double max_sigma() const override { return max_sigma_; }
   double eval(Vec3 wi, Vec3 wo) const override { return sggx::specular_flake_phase(s_, wi, wo); }
-  ScatterSample sample(Vec3 wi, Rng& rng) const override {
-    const double u1 = rng.uniform(), u2 = rng.uniform();
-    const Vec3 m = sggx::sample_visible_normal(s_, wi, u1, u2);
-    const double c = dot(wi, m);
-    ScatterSample r;
-    r.wo = normalize(m * (2 * c) - wi);
-    const double ac = std::fabs(c);
-    r.weight = {albedo_.r * sggx::schlick(f0_.r, ac), albedo_.g * sggx::schlick(f0_.g, ac),
-                albedo_.b * sggx::schlick(f0_.b, ac)};
-    r.valid = c > 0;
-    return r;
-  }
+  ScatterSample sample(Vec3 wi, Rng& rng) const override { return sample_sggx_flakes(s_, albedo_, f0_, wi, rng); }
 
  private:
   sggx::Sggx s_;
@@ -88,6 +77,18 @@ class LambertSphere final : public PhaseFunction {
 };
 
 }  // namespace
+
+ScatterSample sample_sggx_flakes(const sggx::Sggx& s, const Rgb& albedo, const Rgb& f0, Vec3 wi, Rng& rng) {
+  const double u1 = rng.uniform(), u2 = rng.uniform();
+  const Vec3 m = sggx::sample_visible_normal(s, wi, u1, u2);
+  const double c = dot(wi, m);
+  ScatterSample r;
+  r.wo = normalize(m * (2 * c) - wi);
+  const double ac = std::fabs(c);
+  r.weight = {albedo.r * sggx::schlick(f0.r, ac), albedo.g * sggx::schlick(f0.g, ac), albedo.b * sggx::schlick(f0.b, ac)};
+  r.valid = c > 0;
+  return r;
+}
 
 std::unique_ptr<PhaseFunction> make_phase(const SlabLayer& l) {
   switch (l.phase) {

@@ -8,6 +8,7 @@
 // propagation direction), wo along the new propagation direction.
 #include <memory>
 
+#include "models/sggx/sggx_distribution.h"
 #include "sim/core/rgb.h"
 #include "sim/core/rng.h"
 #include "sim/core/vec.h"
@@ -36,5 +37,11 @@ class PhaseFunction {
 };
 
 std::unique_ptr<PhaseFunction> make_phase(const SlabLayer& layer);
+
+// One event of specular two-sided SGGX flakes with matrix s: a visible normal
+// m of wi (Heitz 2015), wo = wi reflected about m, weight = albedo Schlick(f0, |wi.m|).
+// The layer phase function uses it with the layer's S; the OpenVDB path with S
+// read from the grids at the scattering point.
+ScatterSample sample_sggx_flakes(const sggx::Sggx& s, const Rgb& albedo, const Rgb& f0, Vec3 wi, Rng& rng);
 
 }  // namespace mcref::volume

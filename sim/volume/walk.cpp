@@ -34,7 +34,7 @@ int walk(const SlabMedium& medium, FreeFlight& flight, const WalkSettings& s, Ve
     ++order;
     if (f == Flight::kCollision) {
       if (order == 1) first_class = kClassVolume;
-      const ScatterSample sc = layers[p.layer].phase->sample(-p.d, rng);
+      const ScatterSample sc = flight.scatter(layers[p.layer], p.layer, -p.d, rng);
       if (!sc.valid) return order;
       weight = weight * sc.weight;
       p.d = sc.wo;
