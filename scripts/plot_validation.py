@@ -28,7 +28,10 @@ except ImportError as e:  # pragma: no cover
 # The axis along x for each quantity; other axes become series.
 X_AXIS = {"p1": "r", "ndf": "theta_m", "tau_plus": "theta_i", "tau_height": "h",
           "g1": "theta_i", "g1_conditional": "theta_m", "vndf": "theta_m",
-          "pore_visibility": "theta_o", "pore_visibility_independent": "theta_o"}
+          "pore_visibility": "theta_o", "pore_visibility_independent": "theta_o",
+          "phase": "mu", "brdf_modes": "theta_o", "spherical_albedo": "channel"}
+# Optional: which indices of an axis to draw as series (others: all), per quantity.
+PICK = {"brdf_modes": {"theta_i": [0, 11], "channel": [2]}}
 MAX_SERIES = 6
 STYLES = ["-", "--", ":", "-.", (0, (5, 1)), (0, (3, 1, 1, 1, 1, 1))]
 
@@ -57,7 +60,9 @@ def plot_table(ax, quantity, axes, value, stderr, models):
     xdeg = axes[xi][2] == "rad"
     xs = np.degrees(x) if xdeg else x
     others = [d for d in range(len(axes)) if d != xi and len(axes[d][1]) > 0]
-    combos = list(itertools.product(*[range(len(axes[d][1])) for d in others]))
+    pick = PICK.get(quantity, {})
+    combos = list(itertools.product(*[[i for i in pick.get(axes[d][0], range(len(axes[d][1])))
+                                       if i < len(axes[d][1])] for d in others]))
     if len(combos) > MAX_SERIES:
         pick = np.linspace(0, len(combos) - 1, MAX_SERIES).round().astype(int)
         combos = [combos[i] for i in sorted(set(pick))]

@@ -135,6 +135,19 @@ std::string report_html(const Suite& suite, const std::vector<CaseResult>& resul
     h << "<h2 id='" << html(c.name) << "'>" << html(c.name) << (c.figure.empty() ? "" : " &mdash; " + html(c.figure))
       << "</h2>\n<p>" << html(c.description) << "</p>\n";
     if (have_plots) h << "<img src='plots/" << html(c.name) << ".png' alt='" << html(c.name) << "'>\n";
+    if (!c.energy.empty()) {
+      h << "<p>Energy by scattering order (channel 0, first azimuth of incidence; delta lobes included):</p>\n"
+        << "<table><tr><th>table</th><th>&theta;<sub>i</sub> (deg)</th><th>energy</th><th>order 1</th>"
+        << "<th>orders &ge; 2</th><th>share of multiple scattering</th></tr>\n";
+      for (const EnergyShare& e : c.energy) {
+        char row[256];
+        std::snprintf(row, sizeof row, "<td>%.1f</td><td>%.4f</td><td>%.4f</td><td>%.4f</td><td>%.1f %%</td>",
+                      e.theta_i * 180 / 3.14159265358979323846, e.total, e.single, e.multiple,
+                      e.total > 0 ? 100 * e.multiple / e.total : 0.0);
+        h << "<tr><td>" << html(e.table) << "</td>" << row << "</tr>\n";
+      }
+      h << "</table>\n";
+    }
     h << "<ul>\n";
     for (const CheckResult& r : c.checks)
       h << "<li><b>" << html(r.model) << "</b> on <code>" << html(r.table) << "</code> (" << (r.exact ? "exact" : "approximate")

@@ -21,9 +21,17 @@ struct CheckResult {
   Verdict verdict;
 };
 
+// Share of the reflected (or transmitted) energy by scattering order, from an
+// albedo table: one row per incident direction, channel 0.
+struct EnergyShare {
+  std::string table;
+  double theta_i = 0, phi_i = 0, total = 0, single = 0, multiple = 0;
+};
+
 struct CaseResult {
   std::string name, figure, description, table_file;
   bool reused = false;
+  std::vector<EnergyShare> energy;
   Provenance provenance;
   std::vector<CheckResult> checks;
 };

@@ -19,8 +19,11 @@
 #include <memory>
 #include <mutex>
 #include <stdexcept>
+#include <tuple>
 
+#include "models/lambert_sphere/albedo_mapping.h"
 #include "models/lambert_sphere/brdf.h"
+#include "models/lambert_sphere/phase_function.h"
 #include "models/lambert_sphere/fast_brdf.h"
 #include "models/lambert_sphere/phase_sampling.h"
 #include "models/lambert_sphere/reference_brdf.h"
@@ -129,6 +132,39 @@ std::vector<ModelInfo> model_list() {
       {"albedo_reference_three_term", "albedo", false,
        "directional albedo of reference_three_term (hemispherical quadrature), total component", "spheres"},
       {"albedo_deon_corrected", "albedo", false, "directional albedo of deon_corrected, total component", "spheres"},
+      {"phase_three_term", "phase", false,
+       "three-term truncation of Eq. 1 (Eq. 7-8: 1 - 4 mu / 3 + 5 P2(mu) / 16), as d'Eon's multiple scattering uses it",
+       "spheres"},
+      // Fourier modes f^(k), k = 0, 1, 2 (table <brdf>_modes, Eq. 9 convention).
+      {"modes_deon_published", "brdf_modes", false,
+       "modes of deon_published: exact-phase single-scattering modes of Eq. 10 + Eq. 38 (k = 0) + Eq. 28 (k = 1), "
+       "fits; k = 2 single scattering only (f_m^(2) = 0)",
+       "spheres"},
+      {"modes_deon_corrected", "brdf_modes", false,
+       "modes of deon_corrected: as modes_deon_published with 2 x Eq. 22 - 192 pi term (log-separable H1)", "spheres"},
+      {"modes_eq30_eq22", "brdf_modes", false,
+       "f^(0) = Eq. 30 and f^(1) = Eq. 22 as published (fits; all orders, three-term phase function); k = 2 not modelled",
+       "spheres"},
+      {"modes_eq30_2x_eq22", "brdf_modes", false,
+       "f^(0) = Eq. 30 and f^(1) = 2 x Eq. 22 (the corrected cos(phi) mode; fits, log-separable H1); k = 2 not modelled", "spheres"},
+      {"modes_three_term_exact", "brdf_modes", false,
+       "exact modes k = 0, 1, 2 of the three-term half-space, all orders (ReferenceBrdf::mode, no fits): what Eq. 30 "
+       "and 2 x Eq. 22 approximate",
+       "spheres"},
+      {"modes_reference_three_term", "brdf_modes", false,
+       "modes of reference_three_term: exact-phase single-scattering modes + exact three-term multiple-scattering modes",
+       "spheres"},
+      {"f0_eq30", "brdf_modes", false, "f^(0) of Eq. 30 (fits) on the k = 0 cells only: its error is d'Eon's Fig. 5",
+       "spheres"},
+      {"f0_deon_published", "brdf_modes", false,
+       "f^(0) of deon_published (exact-phase single scattering + Eq. 38) on the k = 0 cells only", "spheres"},
+      {"f0_reference_three_term", "brdf_modes", false,
+       "f^(0) of reference_three_term on the k = 0 cells only (the three-term truncation error alone)", "spheres"},
+      // Spherical albedo (table <brdf>_kd).
+      {"kd_eq40", "spherical_albedo", false, "k_d from c by Eq. 40 (fit)", "spheres"},
+      {"kd_eq30", "spherical_albedo", false, "k_d = 4 pi \\int\\int f^(0) mu_i mu_o of Eq. 30 (fits)", "spheres"},
+      {"kd_reference_three_term", "spherical_albedo", false,
+       "k_d of reference_three_term (exact single scattering + exact three-term multiple scattering)", "spheres"},
   };
   for (ModelInfo& x : m) x.kind = "spheres";
   return m;
@@ -233,8 +269,124 @@ std::vector<double> albedo_values(const BrdfFn& f, const Table& t, const Experim
   return v;
 }
 
+// Bin average of 2 pi p_3(mu) = (1 - 4 mu / 3 + 5 P2(mu) / 16) / 2, in closed form.
+std::vector<double> phase_three_term_values(const Table& t) {
+  const Axis& mu = t.axes[axis_index(t, "mu")];
+  const auto F = [](double x) { return 0.5 * (x - 2 * x * x / 3 + 5.0 / 32 * (x * x * x - x)); };
+  std::vector<double> v(t.cells());
+  for (std::size_t i = 0; i < mu.size(); ++i) v[i] = (F(mu.upper(i)) - F(mu.lower(i))) / (mu.upper(i) - mu.lower(i));
+  return v;
+}
+
+// Mode k of the single scattering Eq. 10 with the exact phase function, memoized.
+double ss_mode_exact(double c, double mi, double mo, int k) {
+  static std::mutex mutex;
+  static std::map<std::tuple<double, double, double, int>, double> memo;
+  const auto key = std::make_tuple(c, mi, mo, k);
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    const auto it = memo.find(key);
+    if (it != memo.end()) return it->second;
+  }
+  const double v = ls::single_scattering_mode_numeric(c, mi, mo, k, ls::PhaseModel::exact);
+  std::lock_guard<std::mutex> lock(mutex);
+  return memo[key] = v;
+}
+
+// Mode k (0, 1, 2) of a model at (c, mu_i, mu_o); NaN where it does not model k.
+using ModeFn = std::function<double(double, double, double, int)>;
+
+ModeFn mode_model(const std::string& name) {
+  const double nan = NAN;
+  if (name == "modes_deon_published" || name == "modes_deon_corrected" || name == "f0_deon_published") {
+    const int v = name == "modes_deon_corrected" ? 1 : 0;
+    const bool only0 = name[0] == 'f';
+    return [v, only0, nan](double c, double mi, double mo, int k) {
+      if (only0 && k != 0) return nan;
+      const ls::Brdf& b = deon(c, v);
+      const double m = k == 0 ? b.multiple_zeroth_mode(mi, mo) : (k == 1 ? b.multiple_first_mode(mi, mo) : 0.0);
+      return ss_mode_exact(c, mi, mo, k) + m;
+    };
+  }
+  if (name == "modes_eq30_eq22" || name == "modes_eq30_2x_eq22" || name == "f0_eq30") {
+    const double scale = name == "modes_eq30_2x_eq22" ? 2 : 1;
+    const bool only0 = name[0] == 'f';
+    return [scale, only0, nan](double c, double mi, double mo, int k) {
+      // The corrected mode with the log-separable H1 (deon_corrected's); Eq. 23-25 as printed otherwise.
+      const ls::Brdf& b = deon(c, scale == 2 ? 1 : 0);
+      if (k == 0) return b.zeroth_mode(mi, mo);
+      if (k == 1 && !only0) return scale * b.first_mode_eq22(mi, mo);
+      return nan;
+    };
+  }
+  if (name == "modes_three_term_exact")
+    return [](double c, double mi, double mo, int k) { return reference(c).mode(k, mi, mo); };
+  if (name == "modes_reference_three_term" || name == "f0_reference_three_term") {
+    const bool only0 = name[0] == 'f';
+    return [only0, nan](double c, double mi, double mo, int k) {
+      if (only0 && k != 0) return nan;
+      return ss_mode_exact(c, mi, mo, k) + reference(c).multiple_mode(k, mi, mo);
+    };
+  }
+  throw std::invalid_argument("no sphere mode model " + name);
+}
+
+// Mode cells: point theta_i, cosine-weighted bin average over theta_o (8-point
+// Gauss-Legendre in mu_o), as the table estimates them.
+std::vector<double> mode_values(const ModeFn& f, const Table& t, const Experiment& ex) {
+  const int ai = axis_index(t, "theta_i"), ao = axis_index(t, "theta_o"), ak = axis_index(t, "k"), ac = axis_index(t, "channel");
+  static const GaussLegendre gl(8);
+  std::vector<double> v(t.cells());
+  for_each_cell(t, [&](std::size_t flat, const std::vector<std::size_t>& idx) {
+    const double c = ex.spheres.albedo[static_cast<int>(t.axes[ac].values[idx[ac]])];
+    const int k = static_cast<int>(t.axes[ak].values[idx[ak]]);
+    const double mu_i = std::cos(t.axes[ai].values[idx[ai]]);
+    const Axis& o = t.axes[ao];
+    const double mu_hi = std::cos(o.lower(idx[ao])), mu_lo = std::cos(o.upper(idx[ao]));
+    double num = 0, den = 0;
+    for (std::size_t a = 0; a < gl.x.size(); ++a) {
+      const double mu = 0.5 * (mu_lo + mu_hi) + 0.5 * (mu_hi - mu_lo) * gl.x[a];
+      num += gl.w[a] * mu * f(c, mu_i, mu, k);
+      den += gl.w[a] * mu;
+    }
+    v[flat] = num / den;
+  });
+  return v;
+}
+
+std::vector<double> kd_values(const std::string& model, const Table& t, const Experiment& ex) {
+  static std::mutex mutex;
+  static std::map<std::pair<std::string, double>, double> memo;
+  const int ac = axis_index(t, "channel");
+  std::vector<double> v(t.cells());
+  for_each_cell(t, [&](std::size_t flat, const std::vector<std::size_t>& idx) {
+    const double c = ex.spheres.albedo[static_cast<int>(t.axes[ac].values[idx[ac]])];
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      const auto it = memo.find({model, c});
+      if (it != memo.end()) {
+        v[flat] = it->second;
+        return;
+      }
+    }
+    double kd;
+    if (model == "kd_eq40") kd = ls::kd_from_albedo(c);
+    else if (model == "kd_eq30") {
+      const ls::Brdf& b = deon(c, 0);
+      kd = ls::spherical_albedo([&b](double mi, double mo) { return b.zeroth_mode(mi, mo); });
+    } else if (model == "kd_reference_three_term") kd = ls::spherical_albedo_reference(std::min(c, 0.9999));
+    else throw std::invalid_argument("no sphere k_d model " + model);
+    std::lock_guard<std::mutex> lock(mutex);
+    v[flat] = memo[{model, c}] = kd;
+  });
+  return v;
+}
+
 std::vector<double> evaluate(const std::string& model, const Table& t, const Experiment& ex) {
   if (model == "phase_eq1") return phase_values(t);
+  if (model == "phase_three_term") return phase_three_term_values(t);
+  if (t.quantity == "brdf_modes") return mode_values(mode_model(model), t, ex);
+  if (t.quantity == "spherical_albedo") return kd_values(model, t, ex);
   if (model == "volumetric_mc") return volumetric_values(t, ex);
   if (model == "single_scattering_eq10" && ex.spheres.placement != SpherePlacement::volumetric)
     throw std::invalid_argument(

@@ -118,6 +118,37 @@ TableFile tables_for(const Case& c, const Experiment& ex, const SuiteOptions& o,
   return f;
 }
 
+// Energy by order from the albedo tables (components attribute lists the
+// component names, "total" last); first azimuth of incidence, channel 0.
+std::vector<EnergyShare> energy_shares(const TableFile& f) {
+  std::vector<EnergyShare> out;
+  for (const Table& t : f.tables) {
+    const auto names_it = t.attributes.find("components");
+    if (names_it == t.attributes.end() || t.axes.size() != 4 || t.name.size() < 7 ||
+        t.name.compare(t.name.size() - 7, 7, "_albedo") != 0)
+      continue;
+    std::vector<std::string> names;
+    std::stringstream ss(names_it->second);
+    for (std::string n; std::getline(ss, n, ',');) names.push_back(n);
+    const std::size_t nc = t.axes[2].size(), nch = t.axes[3].size(), nphi = t.axes[1].size();
+    if (names.size() != nc) continue;
+    for (std::size_t a = 0; a < t.axes[0].size(); ++a) {
+      EnergyShare e;
+      e.table = t.name;
+      e.theta_i = t.axes[0].values[a];
+      e.phi_i = t.axes[1].values[0];
+      for (std::size_t c = 0; c < nc; ++c) {
+        const double v = t.value(((a * nphi + 0) * nc + c) * nch + 0);
+        if (names[c] == "total") e.total = v;
+        else if (names[c].rfind("order1", 0) == 0) e.single += v;
+        else e.multiple += v;
+      }
+      out.push_back(e);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 int run_suite(const Suite& suite, const SuiteOptions& o) {
@@ -146,6 +177,7 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
     cr.table_file = (fs::path("tables") / (c.name + ".h5")).string();
     const TableFile f = tables_for(c, ex, o, (fs::path(o.out_dir) / cr.table_file).string(), k, suite.cases.size(), cr.reused);
     cr.provenance = f.provenance;
+    cr.energy = energy_shares(f);
     std::vector<Check> checks = c.checks;
     if (checks.empty())
       for (const Table& t : f.tables)

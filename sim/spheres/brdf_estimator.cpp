@@ -1,6 +1,8 @@
 // brdf on Lambertian-sphere volumes: explicit packings and the volumetric half-space.
 #include <cstdio>
+#include <stdexcept>
 
+#include "sim/spheres/derived_tables.h"
 #include "sim/spheres/sphere_estimators.h"
 #include "sim/spheres/sphere_field.h"
 #include "sim/spheres/walks.h"
@@ -9,6 +11,7 @@ namespace mcref {
 
 BrdfLayout sphere_brdf_layout(const Measure& m, const Experiment& ex) {
   BrdfLayout l;
+  // (The derived mode table needs the folded azimuth: ex.isotropic, always set for spheres.)
   l.theta_o_bins = m.theta_o_bins;
   l.phi_bins = m.phi_bins;
   l.folded = ex.isotropic;
@@ -35,6 +38,14 @@ std::vector<Table> make_sphere_brdf_tables(const Measure& m, const Experiment& e
   tr.attributes["transmission_threshold"] = buf;
   tr.attributes["placement"] = placement_name(p.placement);
   t.push_back(tr);
+  // Derived per batch (sim/spheres/derived_tables.h), volumetric half-space only:
+  // the Fourier modes of the total BRDF, and k_d when theta_i are Gauss-Legendre nodes.
+  if (p.placement == SpherePlacement::volumetric && l.folded) {
+    t.push_back(make_mode_table(t[0]));
+    if (!spherical_albedo_weights(m.theta_i).empty())
+      for (const Table& x : std::vector<Table>(t))
+        if (x.name == m.name + "_albedo") t.push_back(make_kd_table(x));
+  }
   for (Table& x : t) {
     x.attributes["placement"] = placement_name(p.placement);
     std::snprintf(buf, sizeof buf, "%.6g", p.volume_fraction);
@@ -71,8 +82,22 @@ void add_sphere_brdf_batch(const SphereField* field, const Experiment& ex, const
       total.resize(l.sums_size());
       sums.push_back(std::move(total));
     }
-  add_brdf_batch(sums, static_cast<double>(m.samples), l, tables);
-  tables.back().add_batch(transmitted);
+  // One batch of the brdf tables, kept apart so that the derived tables see it.
+  std::vector<Table> batch = make_brdf_tables(m.name, m.theta_i, m.phi_i, l);
+  add_brdf_batch(sums, static_cast<double>(m.samples), l, batch);
+  const Table *total = nullptr, *albedo = nullptr;
+  for (std::size_t i = 0; i < batch.size(); ++i) {
+    if (tables[i].name != batch[i].name) throw std::logic_error("sphere brdf tables out of order");
+    tables[i].add_batch(batch[i].values());
+    if (batch[i].name == m.name) total = &batch[i];
+    if (batch[i].name == m.name + "_albedo") albedo = &batch[i];
+  }
+  for (std::size_t i = batch.size(); i < tables.size(); ++i) {
+    Table& t = tables[i];
+    if (t.name == m.name + "_transmittance") t.add_batch(transmitted);
+    else if (t.name == m.name + "_modes") t.add_batch(mode_estimate(*total, total->values(), t));
+    else if (t.name == m.name + "_kd") t.add_batch(kd_estimate(*albedo, albedo->values(), spherical_albedo_weights(m.theta_i)));
+  }
 }
 
 }  // namespace mcref
