@@ -5,6 +5,15 @@
 
 namespace mcref::cli {
 
+long long parse_integer(const std::string& flag, const std::string& v, long long lo, long long hi) {
+  char* end = nullptr;
+  const long long n = std::strtoll(v.c_str(), &end, 10);
+  if (v.empty() || *end || n < lo || n > hi)
+    throw ConfigError("command line", flag, "= " + v + " must be an integer in [" + std::to_string(lo) + ", " +
+                                                 std::to_string(hi) + "]");
+  return n;
+}
+
 Args parse_args(const std::vector<std::string>& args, const std::string& verb, bool allow_set_and_seed) {
   Args a;
   auto value = [&](std::size_t& i) -> const std::string& {
@@ -13,13 +22,7 @@ Args parse_args(const std::vector<std::string>& args, const std::string& verb, b
   };
   auto number = [&](std::size_t& i, long long lo, long long hi) {
     const std::string& flag = args[i];
-    const std::string& v = value(i);
-    char* end = nullptr;
-    const long long n = std::strtoll(v.c_str(), &end, 10);
-    if (v.empty() || *end || n < lo || n > hi)
-      throw ConfigError("command line", flag, "= " + v + " must be an integer in [" + std::to_string(lo) + ", " +
-                                                   std::to_string(hi) + "]");
-    return n;
+    return parse_integer(flag, value(i), lo, hi);
   };
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& s = args[i];

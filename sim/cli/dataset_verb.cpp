@@ -27,15 +27,6 @@ const char* kHelp =
     "  --stop-after N   compute at most N new entries, then stop (rerun to continue)\n"
     "  --quiet          no progress line\n";
 
-long long to_integer(const std::string& flag, const std::string& v, long long lo, long long hi) {
-  char* end = nullptr;
-  const long long n = std::strtoll(v.c_str(), &end, 10);
-  if (v.empty() || *end || n < lo || n > hi)
-    throw ConfigError("command line", flag, "= " + v + " must be an integer in [" + std::to_string(lo) + ", " +
-                                                std::to_string(hi) + "]");
-  return n;
-}
-
 }  // namespace
 
 int dataset(const std::vector<std::string>& raw, const std::string& command_line) {
@@ -49,13 +40,13 @@ int dataset(const std::vector<std::string>& raw, const std::string& command_line
     if (i + 1 >= raw.size()) throw ConfigError("command line", raw[i], "needs a value");
     const std::string flag = raw[i], v = raw[++i];
     if (flag == "--stop-after") {
-      opt.stop_after = to_integer(flag, v, 0, 1LL << 40);
+      opt.stop_after = parse_integer(flag, v, 0, 1LL << 40);
       continue;
     }
     const auto slash = v.find('/');
     if (slash == std::string::npos) throw ConfigError("command line", flag, "= " + v + " must be K/N with 0 <= K < N");
-    opt.shards = static_cast<int>(to_integer(flag, v.substr(slash + 1), 1, 1000000));
-    opt.shard = static_cast<int>(to_integer(flag, v.substr(0, slash), 0, opt.shards - 1));
+    opt.shards = static_cast<int>(parse_integer(flag, v.substr(slash + 1), 1, 1000000));
+    opt.shard = static_cast<int>(parse_integer(flag, v.substr(0, slash), 0, opt.shards - 1));
   }
   Args a = parse_args(rest, "dataset", false);
   if (a.help) {

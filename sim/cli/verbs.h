@@ -24,6 +24,8 @@ struct Args {
   bool help = false;
   bool force = false;
 };
+// An integer command-line value in [lo, hi] (ConfigError naming the flag otherwise).
+long long parse_integer(const std::string& flag, const std::string& value, long long lo, long long hi);
 Args parse_args(const std::vector<std::string>& args, const std::string& verb, bool allow_set_and_seed);
 
 }  // namespace mcref::cli
