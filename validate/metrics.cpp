@@ -14,14 +14,22 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
   const double nu = static_cast<double>(batches - 1);
   double rel2 = 0;
   for (std::size_t i = 0; i < sim.size(); ++i) {
-    if (!std::isfinite(sim[i]) || !std::isfinite(model[i]) || !std::isfinite(se[i])) continue;
-    if (se[i] <= 0) {
-      // Every batch gave the same value (e.g. all paths scattered): there is
-      // no error bar, so only a gross difference (relative 1e-6) counts.
-      const bool same = std::fabs(sim[i] - model[i]) <= 1e-6 * std::fmax(1.0, std::fabs(model[i]));
-      ++(same ? c.exact_cells : c.mismatched_exact_cells);
+    if (!std::isfinite(sim[i]) || !std::isfinite(model[i]) || !std::isfinite(se[i])) {
+      if (std::isfinite(sim[i]) && !std::isfinite(model[i])) ++c.model_undefined;
       continue;
     }
+    if (se[i] <= 0) {
+      // Every batch gave the same value (all paths scattered, every sample
+      // visible, or a bin that stayed empty): there is no error bar. Equal to
+      // 1e-6 counts as agreement; a gross difference (> 1 %) of a non-empty
+      // cell as disagreement; an empty bin (sim = 0) is only noted.
+      const double diff = std::fabs(sim[i] - model[i]);
+      if (diff <= 1e-6 * std::fmax(1.0, std::fabs(model[i]))) ++c.exact_cells;
+      else if (sim[i] != 0 && diff > 1e-2 * std::fabs(model[i])) ++c.gross_mismatches;
+      else ++c.mismatched_exact_cells;
+      continue;
+    }
+
     const double t = (sim[i] - model[i]) / se[i];
     // Probability-preserving map from t(nu) to N(0, 1), done on the tail
     // P(T > |t|) = I_{nu/(nu+t^2)}(nu/2, 1/2) / 2 to keep precision.
@@ -35,8 +43,8 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
       c.max_abs_z = std::fabs(z);
       c.worst_cell = i;
     }
-    if (std::fabs(sim[i]) > 5 * se[i] && model[i] != 0) {
-      const double rel = std::fabs(sim[i] - model[i]) / std::fabs(model[i]);
+    if (std::fabs(sim[i]) > 5 * se[i]) {
+      const double rel = std::fabs(sim[i] - model[i]) / std::fmax(std::fabs(model[i]), 1e-300);
       c.max_rel_error = std::fmax(c.max_rel_error, rel);
       rel2 += rel * rel;
       ++c.signal_cells;
@@ -49,14 +57,19 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
 
 Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance) {
   char buf[256];
+  if (exact && c.gross_mismatches > 0) {
+    std::snprintf(buf, sizeof buf, "%zu zero-variance cells differ from the model by more than 1 %%", c.gross_mismatches);
+    return {"FAIL", buf};
+  }
   if (c.cells == 0) {
     // Only zero-variance cells: they decide alone.
     if (c.exact_cells > 0 && c.mismatched_exact_cells == 0) {
       std::snprintf(buf, sizeof buf, "all %zu cells have zero variance and equal the model", c.exact_cells);
       return {"pass", buf};
     }
-    if (c.mismatched_exact_cells > 0) {
-      std::snprintf(buf, sizeof buf, "%zu zero-variance cells differ from the model", c.mismatched_exact_cells);
+    if (c.mismatched_exact_cells + c.gross_mismatches > 0) {
+      std::snprintf(buf, sizeof buf, "%zu zero-variance cells differ from the model",
+                    c.mismatched_exact_cells + c.gross_mismatches);
       return {exact ? "FAIL" : "measured", buf};
     }
     return {"FAIL", "no cell could be compared"};
@@ -65,7 +78,8 @@ Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance) {
   // stayed empty in every batch) carry no error bar to judge by: noted only.
   std::string note;
   if (c.mismatched_exact_cells > 0)
-    note = "; " + std::to_string(c.mismatched_exact_cells) + " zero-variance cells differ from the model (not judged)";
+    note = "; " + std::to_string(c.mismatched_exact_cells) + " zero-variance cells differ slightly or are empty (not judged)";
+  if (c.model_undefined > 0) note += "; model undefined on " + std::to_string(c.model_undefined) + " cells";
   if (exact) {
     const double bound = sidak_z_bound(alpha, static_cast<double>(c.cells));
     if (c.p_value < alpha) {
@@ -81,6 +95,7 @@ Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance) {
     std::snprintf(buf, sizeof buf, "p = %.2g >= %.2g; max |z| = %.2f <= %.2f", c.p_value, alpha, c.max_abs_z, bound);
     return {"pass", buf + note};
   }
+  if (tolerance > 0 && c.signal_cells == 0) return {"FAIL", "no cell has enough signal (|sim| > 5 stderr) to check the tolerance" + note};
   if (tolerance > 0) {
     std::snprintf(buf, sizeof buf, "max rel. error %.3g %s tolerance %.3g", c.max_rel_error,
                   c.max_rel_error <= tolerance ? "<=" : ">", tolerance);

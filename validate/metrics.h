@@ -16,7 +16,9 @@ struct Comparison {
   double rms_rel_error = 0;
   std::size_t signal_cells = 0;  // cells with |sim| > 5 stderr
   std::size_t exact_cells = 0;   // zero-variance cells where sim equals the model (to 1e-6 relative)
-  std::size_t mismatched_exact_cells = 0;  // zero-variance cells where they differ
+  std::size_t mismatched_exact_cells = 0;  // zero-variance cells that differ slightly, or empty bins
+  std::size_t gross_mismatches = 0;  // non-empty zero-variance cells more than 1 % off the model
+  std::size_t model_undefined = 0;   // cells with a simulated value where the model is NaN
   std::vector<double> z;         // per cell (NaN where not compared)
   double chi2_per_dof() const { return cells ? chi2 / static_cast<double>(cells) : 0; }
 };
@@ -33,8 +35,10 @@ struct Verdict {
   std::string reason;
 };
 
-// Exact model: passes iff p_value >= alpha and max|z| <= Sidak bound at alpha.
-// Approximate model: passes iff max_rel_error <= tolerance (if tolerance > 0).
+// Exact model: passes iff p_value >= alpha, max|z| <= Sidak bound at alpha,
+// and no non-empty zero-variance cell is more than 1 % off.
+// Approximate model: passes iff max_rel_error <= tolerance (if tolerance > 0),
+// which needs at least one cell with |sim| > 5 stderr.
 Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance);
 
 }  // namespace mcref

@@ -101,10 +101,10 @@ TableFile read_table_file(const std::string& path) {
   h5::Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (!file.valid()) throw ConfigError(path, "", "cannot open the HDF5 file");
   h5::Handle root = h5::open_group(file, "/");
-  if (!h5::has_attr(root, "mcref_format") || h5::read_string_attr(root, "mcref_format") != kFormat)
-    throw ConfigError(path, "mcref_format", "not an mcref table file (root attribute mcref_format != \"mcref-tables\")");
   TableFile f;
   try {
+    if (!h5::has_attr(root, "mcref_format") || h5::read_string_attr(root, "mcref_format") != kFormat)
+      throw ConfigError(path, "mcref_format", "not an mcref table file (root attribute mcref_format != \"mcref-tables\")");
     const std::int64_t version = h5::read_int_attr(root, "format_version");
     if (version != kFormatVersion)
       throw ConfigError(path, "format_version", "is " + std::to_string(version) + "; this mcref reads version 1");
