@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "sim/core/rng.h"
+#include "sim/geometry/ray_log.h"
 
 namespace mcref {
 
@@ -167,6 +168,9 @@ Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
       rh.ray.time = 0;
       rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
       rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      if (t_ray_log)
+        t_ray_log->push_back({{rh.ray.org_x, rh.ray.org_y, rh.ray.org_z}, {rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z},
+                              rh.ray.tnear, rh.ray.tfar});
       rtcIntersect1(scene_, &context, &rh);
       if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
       // Exact root in double precision for the sphere Embree found.

@@ -9,17 +9,24 @@
 //    tau0 = 0.6, beta = 1, tile 200; Lambertian grains 0.8, base 0.5; theta_i = 40.
 //    Walk and bare runs alternate, best of 5, to be robust to other load.
 #include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_reduce.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <vector>
+#include <string>
 
 #include "models/micrograin/ndf_sampling.h"
 #include "models/micrograin/vndf_sampler.h"
 #include "sim/core/rng.h"
 #include "sim/estimators/estimator.h"
 #include "sim/estimators/micrograin_walk.h"
+#include "sim/geometry/ray_log.h"
 
 using namespace mcref;
 
@@ -43,9 +50,11 @@ double ns_per_sample(F&& sample, std::uint64_t n) {
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  const std::string part = argc > 1 ? argv[1] : "all";  // all | samplers | walk
   const std::uint64_t n = 10000000;
   const double tau0 = 0.6;
+  if (part != "walk") {
   const double t_build = now();
   const micrograin::VndfSampler vndf;
   std::printf("vNDF sigma^-1 table (1024 x 1024) built in %.2f s\n\n", now() - t_build);
@@ -56,8 +65,10 @@ int main() {
     const double b = ns_per_sample([&](double u1, double u2) { return vndf.sample_unit(tau0, iu, u1, u2); }, n);
     std::printf("%5.0f    %6.1f  %7.1f  %6.2f\n", ti, a, b, b / a);
   }
+  }
+  if (part == "samplers") return 0;
 
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, argc > 2 ? std::atoi(argv[2]) : 2);
   MicrograinGeometry g;
   g.tau0 = tau0;
   g.beta_x = g.beta_y = 1.0;
@@ -75,53 +86,89 @@ int main() {
   layout.order1_classes = {"grain", "base"};
   const Vec3 wi = incident_direction(40 * kPi / 180, 0);
   const std::uint64_t paths = 1 << 20;
-  double best_walk = 0, best_bare = 0, rays_per_path = 0;
-  for (int rep = 0; rep < 5; ++rep) {
-    double t0 = now();
-    const Sums s = run_chunks(paths, layout.sums_size() + 1, 99 + rep, [&](Rng& rng, std::uint64_t count, Sums& acc) {
+  auto walk = [&](std::uint64_t key) {
+    return run_chunks(paths, layout.sums_size() + 1, key, [&](Rng& rng, std::uint64_t count, Sums& acc) {
       BrdfAccumulator tally(layout, 0.0, acc);
       WalkCounters c;
       for (std::uint64_t k = 0; k < count; ++k) trace_brdf_path(f, mat, wi, 0, rng, tally, &c);
       acc[layout.sums_size()] += static_cast<double>(c.rays);
     });
-    const double walk_time = now() - t0;
-    const double rays = s[layout.sums_size()];
-    rays_per_path = rays / paths;
-    best_walk = std::max(best_walk, rays / walk_time);
-    // Bare rtcIntersect1: the same number of rays, first hits from the top.
-    const Vec3 d = -unit_direction(f, wi);
-    const float tfar = static_cast<float>(-1.0 / d.z);
-    RTCScene scene = f.embree_scene();
-    t0 = now();
-    const Sums b = run_chunks(static_cast<std::uint64_t>(rays), 1, 7 + rep, [&](Rng& rng, std::uint64_t count, Sums& acc) {
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
-      for (std::uint64_t k = 0; k < count; ++k) {
-        const Vec3 o = uniform_top_origin(f, rng);
-        RTCRayHit rh;
-        rh.ray.org_x = static_cast<float>(o.x);
-        rh.ray.org_y = static_cast<float>(o.y);
-        rh.ray.org_z = static_cast<float>(o.z);
-        rh.ray.dir_x = static_cast<float>(d.x);
-        rh.ray.dir_y = static_cast<float>(d.y);
-        rh.ray.dir_z = static_cast<float>(d.z);
-        rh.ray.tnear = 0.0f;
-        rh.ray.tfar = tfar;
-        rh.ray.mask = 0xFFFFFFFFu;
-        rh.ray.flags = 0;
-        rh.ray.time = 0;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(scene, &context, &rh);
-        acc[0] += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-      }
-    });
-    best_bare = std::max(best_bare, rays / (now() - t0));
-    (void)b;
+  };
+
+  // The rays the walk gives Embree, recorded on one thread (untimed) from
+  // another realisation of the same walk (same distribution of rays).
+  std::vector<LoggedRay> rays;
+  rays.reserve(3 * paths);
+  t_ray_log = &rays;
+  {
+    Rng rng(12345);
+    Sums acc(layout.sums_size());
+    BrdfAccumulator tally(layout, 0.0, acc);
+    for (std::uint64_t k = 0; k < paths; ++k) trace_brdf_path(f, mat, wi, 0, rng, tally);
   }
-  std::printf("\nBRDF walk, 2 threads: %.3g paths/s, %.3g rays/s (%.2f rays/path)\n", best_walk / rays_per_path,
-              best_walk, rays_per_path);
-  std::printf("bare rtcIntersect1, 2 threads: %.3g rays/s\n", best_bare);
-  std::printf("walk overhead over bare rays: %.0f %% (target < 30 %%)\n", 100 * (best_bare / best_walk - 1));
+  t_ray_log = nullptr;
+  RTCScene scene = f.embree_scene();
+  auto trace = [&](const LoggedRay& r) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray.org_x = r.org[0];
+    rh.ray.org_y = r.org[1];
+    rh.ray.org_z = r.org[2];
+    rh.ray.dir_x = r.dir[0];
+    rh.ray.dir_y = r.dir[1];
+    rh.ray.dir_z = r.dir[2];
+    rh.ray.tnear = r.tnear;
+    rh.ray.tfar = r.tfar;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.flags = 0;
+    rh.ray.time = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, &context, &rh);
+    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+  };
+  auto replay = [&](const std::vector<LoggedRay>& v) {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, v.size(), 4096), std::size_t{0},
+        [&](const tbb::blocked_range<std::size_t>& r, std::size_t hits) {
+          for (std::size_t k = r.begin(); k < r.end(); ++k) hits += trace(v[k]);
+          return hits;
+        },
+        std::plus<>());
+  };
+  // First-hit rays from the top, as many as the walk's Embree calls.
+  std::vector<LoggedRay> top(rays.size());
+  {
+    Rng rng(7);
+    const Vec3 d = -unit_direction(f, wi);
+    for (LoggedRay& r : top) {
+      const Vec3 o = uniform_top_origin(f, rng);
+      r = {{float(o.x), float(o.y), float(o.z)}, {float(d.x), float(d.y), float(d.z)}, 0.0f, float(-1.0 / d.z)};
+    }
+  }
+
+  // Walk, replay and first-hit runs alternate; best of 5 each.
+  double t_walk = 1e30, t_replay = 1e30, t_top = 1e30, unit_rays = 0;
+  for (int rep = 0; rep < 5; ++rep) {
+    double t0 = now();
+    const Sums s = walk(99 + rep);
+    t_walk = std::min(t_walk, now() - t0);
+    unit_rays = s[layout.sums_size()];
+    t0 = now();
+    replay(rays);
+    t_replay = std::min(t_replay, now() - t0);
+    t0 = now();
+    replay(top);
+    t_top = std::min(t_top, now() - t0);
+  }
+  const double calls = static_cast<double>(rays.size());
+  std::printf("\nBRDF walk, 2 threads, %llu paths: %.3g paths/s, %.3g rays/s (%.2f rays/path, %.2f rtcIntersect1/path)\n",
+              static_cast<unsigned long long>(paths), paths / t_walk, unit_rays / t_walk, unit_rays / paths,
+              calls / paths);
+  std::printf("the same rtcIntersect1 calls replayed bare, 2 threads: %.3g calls/s\n", calls / t_replay);
+  std::printf("first-hit rays from the top, bare, 2 threads: %.3g rays/s\n", calls / t_top);
+  std::printf("walk overhead over tracing its own rays: %.0f %% (target < 30 %%)\n", 100 * (t_walk / t_replay - 1));
+  std::printf("walk time / first-hit time for as many rays: %.2f\n", t_walk / t_top);
   return 0;
 }
