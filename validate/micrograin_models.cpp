@@ -108,8 +108,8 @@ std::vector<double> vndf_sampler_histogram(const Table& t, const MicrograinGeome
       const Sums acc = run_chunks(kVndfSamplerSamples, cells, stream_seed({kVndfSamplerSeed, dir}),
                                   [&](Rng& rng, std::uint64_t n, Sums& s) {
                                     for (std::uint64_t k = 0; k < n; ++k) {
-                                      const double u1 = rng.uniform(), u2 = rng.uniform();
-                                      const Vec3 m = sampler.sample(f, wi, u1, u2);
+                                      const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+                                      const Vec3 m = sampler.sample(f, wi, u1, u2, u3);
                                       const int c = th.find_bin(spherical_theta(m));
                                       const int d = ph.find_bin(relative_azimuth(spherical_phi(m), phi_i, folded));
                                       if (c >= 0 && d >= 0) s[c * ph.size() + d] += 1;

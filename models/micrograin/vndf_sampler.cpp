@@ -12,6 +12,9 @@ namespace {
 
 constexpr int kN = VndfSampler::kResolution;
 constexpr int kFine = 4096;  // sigma evaluations per table row
+// 16-bit fixed point: a step of 1.5e-5, far below the bilinear error of the
+// 1024 x 1024 table (~2e-3 in h); 2 MiB, so it stays in a core's L2 cache.
+constexpr double kTableScale = 65535;
 
 // Rows: cos theta_i at (j + 0.5) / kN; shadow range of h: [0, sin theta_i].
 double row_cos(int j) { return (j + 0.5) / kN; }
@@ -43,82 +46,93 @@ VndfSampler::VndfSampler() : table_(static_cast<std::size_t>(kN) * kN) {
         const double t = (s[k - 1] - target) / std::max(1e-300, s[k - 1] - s[k]);
         v = h[k - 1] + t * (h[k] - h[k - 1]);
       }
-      table_[static_cast<std::size_t>(j) * kN + c] = static_cast<float>(v);
+      const double unit = std::clamp(v / si, 0.0, 1.0);  // h / sin theta_i of the row
+      table_[static_cast<std::size_t>(j) * kN + c] = static_cast<std::uint16_t>(std::lround(unit * kTableScale));
     }
   }
 }
 
 double VndfSampler::inverse_sigma(double ci, double xi_area) const {
+  return inverse_sigma(ci, std::sqrt(std::max(0.0, 1 - ci * ci)), xi_area);
+}
+
+double VndfSampler::inverse_sigma(double ci, double si, double xi_area) const {
   const double lo = shadow_floor(ci), hi = sigma_at_zero(ci);
   const double x = std::clamp((xi_area - lo) / (hi - lo), 0.0, 1.0) * (kN - 1);
   const double y = std::clamp(ci * kN - 0.5, 0.0, kN - 1.0);
   const int c0 = std::min(static_cast<int>(x), kN - 2), r0 = std::min(static_cast<int>(y), kN - 2);
   const double fx = x - c0, fy = y - r0;
-  const float* a = &table_[static_cast<std::size_t>(r0) * kN + c0];
-  const float* b = a + kN;
-  // Rows hold h / sin theta_i of their own row implicitly (h ranges differ):
-  // interpolate the normalised value h / sin theta_row, then rescale.
-  const double s0 = std::sqrt(1 - row_cos(r0) * row_cos(r0)), s1 = std::sqrt(1 - row_cos(r0 + 1) * row_cos(r0 + 1));
-  const double top = (1 - fx) * a[0] / s0 + fx * a[1] / s0, bottom = (1 - fx) * b[0] / s1 + fx * b[1] / s1;
-  return ((1 - fy) * top + fy * bottom) * std::sqrt(std::max(0.0, 1 - ci * ci));
+  const std::uint16_t* a = &table_[static_cast<std::size_t>(r0) * kN + c0];
+  const std::uint16_t* b = a + kN;
+  // Rows hold h / sin theta_i (the range of h, [0, sin theta_i], differs per row).
+  const double top = a[0] + fx * (a[1] - a[0]), bottom = b[0] + fx * (b[1] - b[0]);
+  return (top + fy * (bottom - top)) * (si / kTableScale);
 }
 
 double VndfSampler::sample_cos_theta(double tau0, Vec3 iu, double xi) const {
+  return sample_cos_theta(tau0, iu.z, std::sqrt(std::max(0.0, 1 - iu.z * iu.z)), xi);
+}
+
+double VndfSampler::sample_cos_theta(double tau0, double ci, double si, double xi) const {
   const double rho = -std::log1p(-tau0) / kPi;  // unit-space density
-  const double ci = iu.z;
   const double tau_i0 = -std::expm1(-rho * sigma_at_zero(ci));
   const double area = -std::log1p(-xi * tau_i0) / rho;  // Eq. 23: sigma(i', cos theta) = Xi
   if (area <= shadow_floor(ci)) return std::sqrt(std::max(0.0, 1 - area / kPi));  // Eq. 25
-  return inverse_sigma(ci, area);
+  return inverse_sigma(ci, si, area);
 }
 
-double tent_inverse(double phi_q, double h0, double xi) {
-  const double h1 = 1 / phi_q - h0, slope = (h0 - h1) / phi_q;  // P~(phi) = h1 + slope |phi|
-  // CDF for phi >= 0: 1/2 + h1 phi + slope phi^2 / 2; symmetric below.
-  const double u = std::fabs(xi - 0.5);
-  double p;
-  if (std::fabs(slope) < 1e-12) p = u / h1;
-  else p = (-h1 + std::sqrt(std::max(0.0, h1 * h1 + 2 * slope * u))) / slope;
-  p = std::min(p, phi_q);
-  return xi < 0.5 ? -p : p;
-}
+PhiConditional::PhiConditional(Vec3 iu, double ct)
+    : PhiConditional(iu.z, std::sqrt(std::max(0.0, 1 - iu.z * iu.z)), ct, std::sqrt(std::max(0.0, 1 - ct * ct))) {}
 
-double VndfSampler::sample_phi(Vec3 iu, double ct, double xi) {
-  const double ci = iu.z, si = std::sqrt(std::max(0.0, 1 - ci * ci));
-  const double st = std::sqrt(std::max(0.0, 1 - ct * ct));
-  double phq = kPi;
-  if (si > ct) phq = std::acos(std::clamp(-(ct * ci) / (st * si), -1.0, 1.0));  // Listing 3 line 8
-  const double a = si * st, b = ci * ct;
-  const double norm = 1 / (2 * (std::sin(phq) * a + phq * b));                 // Eq. 22 denominator
-  auto cdf = [&](double p) { return 0.5 + norm * (std::sin(p) * a + p * b); }; // Eq. 22
-  auto pdf = [&](double p) { return norm * (std::cos(p) * a + b); };           // Eq. 26
-  const double h0 = pdf(phq);
-  double p = tent_inverse(phq, std::max(0.0, h0), xi), lo = -phq, hi = phq;
-  for (int it = 0; it < 40; ++it) {
-    const double e = cdf(p) - xi;
-    if (std::fabs(e) < 1e-12) return p;
-    if (e > 0) hi = p; else lo = p;
-    const double d = pdf(p);
-    double next = d > 0 ? p - e / d : 0.5 * (lo + hi);
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (std::fabs(next - p) < 1e-13) return next;
-    p = next;
+PhiConditional::PhiConditional(double ci, double si, double ct, double st) {
+  a = si * st;
+  b = ci * ct;
+  phi_q = kPi;
+  double sin_q = 0, cos_q = -1;
+  if (si > ct) {  // part of the normals at this theta' faces away from i' (Listing 3, line 8)
+    cos_q = std::clamp(-b / a, -1.0, 1.0);
+    sin_q = std::sqrt(1 - cos_q * cos_q);
+    phi_q = std::acos(cos_q);
   }
-  return p;
+  norm = 1 / (2 * (a * sin_q + b * phi_q));
+  h0 = std::max(0.0, norm * (a * cos_q + b));
+  const double inv_q = 1 / phi_q;
+  h1 = inv_q - h0;
+  slope = (h0 - h1) * inv_q;
 }
 
-Vec3 VndfSampler::sample_unit(double tau0, Vec3 iu, double u1, double u2) const {
-  const double ct = sample_cos_theta(tau0, iu, u1), st = std::sqrt(std::max(0.0, 1 - ct * ct));
-  const double phi = sample_phi(iu, ct, u2);
+double PhiConditional::tent_inverse(double u) const {
+  // CDF for phi >= 0: 1/2 + h1 phi + slope phi^2 / 2; symmetric below.
+  const double v = std::fabs(u - 0.5);
+  const double r = h1 * h1 + 2 * slope * v;
+  const double p = std::min(phi_q, 2 * v / (h1 + std::sqrt(std::max(0.0, r))));  // stable root
+  return u < 0.5 ? -p : p;
+}
+
+TriangleCut PhiConditional::cut(double u_s) const {
+  const double x = tent_inverse(u_s), s = std::sin(x), c = std::cos(x);
+  const double f = norm * (a * c + b), F = 0.5 + norm * (a * s + b * x), df = -norm * a * s;
+  return triangle_cut(u_s, x, f, F, df, tent_pdf(x));
+}
+
+double VndfSampler::sample_phi(Vec3 iu, double ct, double u_s, double u_t) {
+  const PhiConditional p(iu, ct);
+  return std::clamp(p.cut(u_s).point(u_t), -p.phi_q, p.phi_q);
+}
+
+Vec3 VndfSampler::sample_unit(double tau0, Vec3 iu, double u1, double u2, double u3) const {
+  const double ci = iu.z, si = std::sqrt(std::max(0.0, 1 - ci * ci));
+  const double ct = sample_cos_theta(tau0, ci, si, u1), st = std::sqrt(std::max(0.0, 1 - ct * ct));
+  const PhiConditional p(ci, si, ct, st);
+  const double phi = std::clamp(p.cut(u2).point(u3), -p.phi_q, p.phi_q);
   const Vec3 m{std::cos(phi) * st, std::sin(phi) * st, ct};
-  const double r = std::hypot(iu.x, iu.y);
-  if (r <= 0) return m;
-  const double rx = iu.x / r, ry = iu.y / r;  // Listing 4: rotate to the azimuth of i'
+  if (!(si > 0)) return m;
+  const double rx = iu.x / si, ry = iu.y / si;  // Listing 4: rotate to the azimuth of i'
   return {m.x * rx - m.y * ry, m.x * ry + m.y * rx, m.z};
 }
 
-Vec3 VndfSampler::sample(const GrainField& f, Vec3 i, double u1, double u2) const {
-  return from_unit_normal(f, sample_unit(f.tau0, to_unit_direction(f, i), u1, u2));
+Vec3 VndfSampler::sample(const GrainField& f, Vec3 i, double u1, double u2, double u3) const {
+  return from_unit_normal(f, sample_unit(f.tau0, to_unit_direction(f, i), u1, u2, u3));
 }
 
 }  // namespace mcref::micrograin

@@ -6,22 +6,26 @@
 // projected area sigma(i', cos theta) to invert; without shadow
 // (Xi <= pi cos^2 theta_i') cos theta = sqrt(1 - Xi/pi) (Eq. 25), otherwise a
 // 1024 x 1024 table of sigma^-1 over (cos theta_i', normalised Xi), built at
-// construction from the closed-form sigma (projected_area.h), read by
-// bilinear interpolation.
+// construction from the closed-form sigma (projected_area.h), stored as
+// 16-bit fractions of sin theta_i', read by bilinear interpolation.
 //
-// phi given theta (Sec. 4.2): the paper maps a tent approximation (Eq. 28–31)
-// through the triangle-cut parameterisation (Heitz 2020, Listing 1 there, two
-// uniforms). The triangle-cut listing is not in the texts we have, so here
-// phi is the exact inverse of the conditional CDF (Eq. 22), by safeguarded
-// Newton iterations started at the tent's inverse: one uniform, no bias.
-// Note: Eq. 28 as printed has slope (h1 - h0)/phi_q, which grows with |phi|;
-// the tent peaked at 0 with P~(±phi_q) = h0 and unit mass has slope
+// phi given theta (Sec. 4.2, Listing 3): a tent approximation of the
+// conditional pdf (Eq. 28–31) is sampled with one uniform and mapped through
+// the triangle-cut parameterisation (Heitz 2020; sim/core/triangle_cut.h)
+// with a second one: exact, no rejection, no iteration.
+// Notes on the printed formulas: the denominators of Eq. 22, 26 and 27 print
+// phi_i where the tent's bound phi_q is meant and lack a factor sin theta_i';
+// Eq. 28 as printed has slope (h1 - h0)/phi_q, which grows with |phi|; the
+// tent peaked at 0 with P~(±phi_q) = h0 and unit mass has slope
 // (h0 - h1)/phi_q, used here.
 //
 // Ranges: tau0 in (0, 1); i real, unit, i.z > 0; uniforms in [0, 1).
+#include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "models/micrograin/grain_field.h"
+#include "sim/core/triangle_cut.h"
 #include "sim/core/vec.h"
 
 namespace mcref::micrograin {
@@ -33,22 +37,40 @@ class VndfSampler {
 
   // cos theta' of a visible normal (Listing 1), i_unit the unit-space direction.
   double sample_cos_theta(double tau0, Vec3 i_unit, double xi) const;
-  // phi' relative to the azimuth of i' (Sec. 4.2), given cos theta'.
-  static double sample_phi(Vec3 i_unit, double cos_theta, double xi);
-  // Unit-space visible normal (Listing 4).
-  Vec3 sample_unit(double tau0, Vec3 i_unit, double u1, double u2) const;
+  double sample_cos_theta(double tau0, double cos_theta_i, double sin_theta_i, double xi) const;
+  // phi' relative to the azimuth of i' (Sec. 4.2, Listing 3), given cos theta'.
+  static double sample_phi(Vec3 i_unit, double cos_theta, double u_s, double u_t);
+  // Unit-space visible normal (Listing 4): u1 for theta', u2, u3 for phi'.
+  Vec3 sample_unit(double tau0, Vec3 i_unit, double u1, double u2, double u3) const;
   // Real-space visible normal, density visible_ndf(f, i, m) per solid angle.
-  Vec3 sample(const GrainField& f, Vec3 i, double u1, double u2) const;
+  Vec3 sample(const GrainField& f, Vec3 i, double u1, double u2, double u3) const;
 
   // sigma^-1 from the table (for tests): h with sigma(i', h) = Xi, Xi in the shadow range.
   double inverse_sigma(double cos_theta_i, double xi_area) const;
+  double inverse_sigma(double cos_theta_i, double sin_theta_i, double xi_area) const;
 
  private:
-  std::vector<float> table_;  // [row: cos theta_i][column: normalised Xi] -> h
+  std::vector<std::uint16_t> table_;  // [row: cos theta_i][column: normalised Xi] -> h / sin theta_i, 16-bit
 };
 
-// The tent approximation of the conditional pdf (Eq. 28 with the slope sign
-// corrected) and its inverse CDF (Eq. 31): phi in [-phi_q, phi_q].
-double tent_inverse(double phi_q, double h0, double xi);
+// The conditional density of phi' given theta' over [-phi_q, phi_q], for
+// i' at azimuth 0 (Eq. 22, 26, 27 with phi_q), and its tent (Eq. 28–31).
+struct PhiConditional {
+  PhiConditional(Vec3 i_unit, double cos_theta);
+  PhiConditional(double cos_theta_i, double sin_theta_i, double cos_theta, double sin_theta);
+  double phi_q;  // the bound: pi, or the shadow terminator (Listing 3, line 8)
+  double a, b;   // sin theta_i' sin theta', cos theta_i' cos theta'
+  double norm;   // 1 / (2 (a sin phi_q + b phi_q))
+  double h0;     // pdf(phi_q), the tent's height at its ends
+  double h1;     // 1 / phi_q - h0, its height at 0 (unit mass)
+  double slope;  // (h0 - h1) / phi_q
+  double pdf(double phi) const { return norm * (a * std::cos(phi) + b); }                 // Eq. 26
+  double cdf(double phi) const { return 0.5 + norm * (a * std::sin(phi) + b * phi); }     // Eq. 22
+  double dpdf(double phi) const { return -norm * a * std::sin(phi); }                     // Eq. 27
+  double tent_pdf(double phi) const { return h1 + slope * std::fabs(phi); }              // Eq. 28
+  double tent_inverse(double u) const;                                                   // Eq. 31
+  // The triangle cut of the tent sample of u_s (Listing 3, lines 16–24).
+  TriangleCut cut(double u_s) const;
+};
 
 }  // namespace mcref::micrograin

@@ -40,7 +40,8 @@ double ns_per_sample(F&& sample, std::uint64_t n) {
   double sink = 0;
   const double t0 = now();
   for (std::uint64_t k = 0; k < n; ++k) {
-    const Vec3 m = sample(rng.uniform(), rng.uniform());
+    const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+    const Vec3 m = sample(u1, u2, u3);
     sink += m.z;
   }
   const double t = now() - t0;
@@ -61,8 +62,8 @@ int main(int argc, char** argv) {
   std::printf("theta_i  NDF ns  vNDF ns  vNDF/NDF   (10^7 samples, 1 thread; tau0 = %.1f, unit space)\n", tau0);
   for (double ti : {20.0, 40.0, 60.0, 80.0}) {
     const Vec3 iu = spherical_direction(ti * kPi / 180, 0.3);
-    const double a = ns_per_sample([&](double u1, double u2) { return micrograin::sample_unit_ndf(tau0, u1, u2); }, n);
-    const double b = ns_per_sample([&](double u1, double u2) { return vndf.sample_unit(tau0, iu, u1, u2); }, n);
+    const double a = ns_per_sample([&](double u1, double u2, double) { return micrograin::sample_unit_ndf(tau0, u1, u2); }, n);
+    const double b = ns_per_sample([&](double u1, double u2, double u3) { return vndf.sample_unit(tau0, iu, u1, u2, u3); }, n);
     std::printf("%5.0f    %6.1f  %7.1f  %6.2f\n", ti, a, b, b / a);
   }
   }

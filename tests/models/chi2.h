@@ -13,6 +13,7 @@
 #include <numeric>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "sim/core/quadrature.h"
@@ -52,8 +53,9 @@ struct Chi2Result {
   bool passed(double alpha) const { return invalid == 0 && p_value > alpha; }
 };
 
-// Runs the test. `sample(u1, u2)` returns a unit Vec3; `pdf(w)` is its density
-// per unit solid angle. Uniforms come from mcref::Rng(seed).
+// Runs the test. `sample(u1, u2)` (or `sample(u1, u2, u3)`) returns a unit
+// Vec3; `pdf(w)` is its density per unit solid angle. Uniforms come from
+// mcref::Rng(seed).
 template <class Sampler, class Pdf>
 Chi2Result chi2_test(Sampler&& sample, Pdf&& pdf, std::uint64_t samples, std::uint64_t seed,
                      const Chi2Options& opt = Chi2Options()) {
@@ -66,8 +68,10 @@ Chi2Result chi2_test(Sampler&& sample, Pdf&& pdf, std::uint64_t samples, std::ui
   std::vector<double> observed(cells, 0.0), expected(cells, 0.0);
   Rng rng(seed);
   for (std::uint64_t k = 0; k < samples; ++k) {
+    Vec3 w;
     const double u1 = rng.uniform(), u2 = rng.uniform();
-    const Vec3 w = sample(u1, u2);
+    if constexpr (std::is_invocable_v<Sampler, double, double, double>) w = sample(u1, u2, rng.uniform());
+    else w = sample(u1, u2);
     if (!(std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z)) || w.z < z_lo ||
         std::fabs(length(w) - 1) > 1e-6) {
       ++r.invalid;
