@@ -78,9 +78,13 @@ std::vector<ModelInfo> model_list() {
        "order1_grain"},
       {"gdist_total", "brdf", false, "tau0 f_S + V_p f_B (vNDF Eq. 1), G_dist product, independent V_p", "micrograin", "total"},
       {"lrpb23_albedo_quadrature", "albedo", false,
-       "directional albedo of LRPB23 Eq. 1-2 (Lambda by quadrature), delta lobe included; delta table: its delta energy",
+       "directional albedo of LRPB23 Eq. 1-2 (Lambda by quadrature), delta lobe included, and of its grain and base "
+       "parts (order-1 components); delta table: its delta energy",
        "micrograin", ""},
-      {"gdist_albedo", "albedo", false, "directional albedo of vNDF Eq. 1 with G_dist, delta lobe included", "micrograin", ""},
+      {"gdist_albedo", "albedo", false,
+       "directional albedo of vNDF Eq. 1 with G_dist, delta lobe included, and of its grain and base parts (order-1 "
+       "components)",
+       "micrograin", ""},
   };
   return m;
 }
@@ -148,7 +152,7 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
   std::vector<double> out(t.cells(), NAN);
   const bool delta_table = t.name.size() >= 6 && t.name.compare(t.name.size() - 6, 6, "_delta") == 0;
   const Axis &ti = t.axes[0], &pi = t.axes[1];
-  const std::size_t total = t.axes[2].size() - 1, base = 1;
+  const std::size_t total = t.axes[2].size() - 1, grain_component = 0, base = 1;  // order1_grain, order1_base
   const GaussLegendre gm(24), gp(24);
   for (std::size_t a = 0; a < ti.size(); ++a)
     for (std::size_t b = 0; b < pi.size(); ++b) {
@@ -161,19 +165,31 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
         }
       }
       if (delta_table) continue;
-      double e[3] = {0, 0, 0};
+      // Energy of the grain part and of the base part (order-1 components of
+      // the table), so that a model's error splits into its order-1 terms and
+      // the multiple scattering it leaves out.
+      double e[2][3] = {{0, 0, 0}, {0, 0, 0}};
       const double span = ex.isotropic ? kPi : 2 * kPi;
+      const Spec grain{Spec::Part::Grain, s.form, s.lambda}, base_part{Spec::Part::Base, s.form, s.lambda};
       for (std::size_t u = 0; u < gm.x.size(); ++u)
         for (std::size_t v = 0; v < gp.x.size(); ++v) {
           const double mu = 0.5 + 0.5 * gm.x[u], phi = 0.5 * span * (1 + gp.x[v]);
           const Vec3 wo = spherical_direction(std::acos(mu), pi.values[b] + phi);
-          double fv[3];
-          eval_f(s, f, ex.materials, wi, wo, fv);
-          for (int k = 0; k < 3; ++k) e[k] += 0.5 * gm.w[u] * 0.5 * span * gp.w[v] * fv[k] * mu * (ex.isotropic ? 2 : 1);
+          const double w = 0.5 * gm.w[u] * 0.5 * span * gp.w[v] * mu * (ex.isotropic ? 2 : 1);
+          double fg[3], fb[3];
+          eval_f(grain, f, ex.materials, wi, wo, fg);
+          eval_f(base_part, f, ex.materials, wi, wo, fb);
+          for (int k = 0; k < 3; ++k) {
+            e[0][k] += w * fg[k];
+            e[1][k] += w * fb[k];
+          }
         }
-      for (std::size_t k = 0; k < 3; ++k)
-        out[t.index({a, b, total, k})] =
-            e[k] + mg::lrpb23_base_delta_energy(f, channel_of(ex.materials.base, static_cast<int>(k)), wi);
+      for (std::size_t k = 0; k < 3; ++k) {
+        const double delta = mg::lrpb23_base_delta_energy(f, channel_of(ex.materials.base, static_cast<int>(k)), wi);
+        out[t.index({a, b, grain_component, k})] = e[0][k];
+        out[t.index({a, b, base, k})] = e[1][k] + delta;
+        out[t.index({a, b, total, k})] = e[0][k] + e[1][k] + delta;
+      }
     }
   return out;
 }

@@ -1,5 +1,6 @@
 #include "validate/report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -88,7 +89,15 @@ std::string results_json(const Suite& suite, const std::vector<CaseResult>& resu
       for (std::size_t v = 0; v < r.model_values.size(); ++v) j << (v ? ", " : "") << json_number(r.model_values[v]);
       j << "]}" << (i + 1 < c.checks.size() ? "," : "") << "\n";
     }
-    j << "     ]}" << (k + 1 < results.size() ? "," : "") << "\n";
+    j << "     ],\n     \"error_budget\": [";
+    for (std::size_t i = 0; i < c.budget.size(); ++i) {
+      const ErrorBudget& b = c.budget[i];
+      j << (i ? ",\n       " : "\n       ") << "{\"table\": " << json_string(b.table) << ", \"model\": " << json_string(b.model)
+        << ", \"theta_i\": " << json_number(b.theta_i) << ", \"sim\": " << json_number(b.sim)
+        << ", \"sim_stderr\": " << json_number(b.sim_stderr) << ", \"model_value\": " << json_number(b.model_value)
+        << ", \"order1_error\": " << json_number(b.order1_error) << ", \"multiple\": " << json_number(b.multiple) << "}";
+    }
+    j << "]}" << (k + 1 < results.size() ? "," : "") << "\n";
   }
   j << "  ]\n}\n";
   return j.str();
@@ -99,6 +108,51 @@ const char* kStyle =
     "table{border-collapse:collapse;font-size:13px}td,th{border:1px solid #ccc;padding:3px 6px;text-align:left}"
     ".pass{color:#070}.FAIL{color:#b00;font-weight:bold}.measured{color:#555}"
     "img{max-width:100%;border:1px solid #eee}pre{background:#f6f6f6;padding:6px;font-size:12px;overflow-x:auto}";
+
+// The error budget of a case: per model, what its single-scattering terms get
+// wrong and what the single-scattering assumption leaves out (ErrorBudget).
+std::string budget_html(const std::vector<ErrorBudget>& budget) {
+  std::ostringstream h;
+  h << "<p>Where the albedo error of each approximate model comes from (mean of the RGB channels it is compared "
+    << "on; &Delta; = model &minus; sim, in % of the simulated albedo): &Delta;<sub>total</sub> = "
+    << "&Delta;<sub>order 1</sub> (its single-scattering terms: masking, shadowing, pore visibility, against the "
+    << "simulated order 1) &minus; the simulated orders &ge; 2 (the single-scattering assumption).</p>\n"
+    << "<table><tr><th>model</th><th>&theta;<sub>i</sub> (deg)</th><th>sim albedo</th><th>model</th>"
+    << "<th>&Delta;<sub>total</sub></th><th>&Delta;<sub>order 1</sub> (masking)</th>"
+    << "<th>&minus;orders &ge; 2 (single scattering)</th></tr>\n";
+  std::string model;  // "model on table"
+  double masking = 0, single = 0;
+  auto summary = [&]() {
+    if (model.empty()) return;
+    char row[320];
+    std::snprintf(row, sizeof row,
+                  "<tr><td colspan='7'><i>%s: of the summed |&Delta;| over &theta;<sub>i</sub>, %.0f %% from its "
+                  "masking terms and %.0f %% from the single-scattering assumption</i></td></tr>\n",
+                  html(model).c_str(), 100 * masking / std::max(1e-300, masking + single),
+                  100 * single / std::max(1e-300, masking + single));
+    h << row;
+  };
+  for (const ErrorBudget& b : budget) {
+    if (b.model + " on " + b.table != model) {
+      summary();
+      model = b.model + " on " + b.table;
+      masking = single = 0;
+    }
+    masking += std::fabs(b.order1_error);
+    single += std::fabs(b.multiple);
+    const double pct = b.sim != 0 ? 100 / b.sim : NAN;
+    char row[320];
+    std::snprintf(row, sizeof row,
+                  "<td>%.1f</td><td>%.4f &plusmn; %.4f</td><td>%.4f</td><td>%+.1f %%</td><td>%+.1f %%</td>"
+                  "<td>%+.1f %%</td>",
+                  b.theta_i * 180 / 3.14159265358979323846, b.sim, b.sim_stderr, b.model_value,
+                  (b.model_value - b.sim) * pct, b.order1_error * pct, -b.multiple * pct);
+    h << "<tr><td>" << html(b.model) << " <small>(" << html(b.table) << ")</small></td>" << row << "</tr>\n";
+  }
+  summary();
+  h << "</table>\n";
+  return h.str();
+}
 
 std::string report_html(const Suite& suite, const std::vector<CaseResult>& results, bool have_plots) {
   std::ostringstream h;
@@ -148,6 +202,7 @@ std::string report_html(const Suite& suite, const std::vector<CaseResult>& resul
       }
       h << "</table>\n";
     }
+    if (!c.budget.empty()) h << budget_html(c.budget);
     h << "<ul>\n";
     for (const CheckResult& r : c.checks)
       h << "<li><b>" << html(r.model) << "</b> on <code>" << html(r.table) << "</code> (" << (r.exact ? "exact" : "approximate")

@@ -163,6 +163,53 @@ std::vector<EnergyShare> energy_shares(const TableFile& f) {
   return out;
 }
 
+// Error budgets of the checks on albedo tables whose order-1 components the
+// model predicts (see ErrorBudget).
+std::vector<ErrorBudget> error_budgets(const TableFile& f, const std::vector<CheckResult>& checks) {
+  std::vector<ErrorBudget> out;
+  for (const CheckResult& r : checks) {
+    const Table* t = f.find(r.table);
+    if (!t || r.quantity != "albedo" || t->axes.size() != 4 || t->attributes.count("components") == 0) continue;
+    std::vector<std::string> names;
+    std::stringstream ss(t->attributes.at("components"));
+    for (std::string n; std::getline(ss, n, ',');) names.push_back(n);
+    const std::size_t nc = t->axes[2].size(), nch = t->axes[3].size(), nphi = t->axes[1].size();
+    if (names.size() != nc || names.back() != "total") continue;
+    const std::vector<double> v = t->values(), se = t->stderrs();
+    for (std::size_t a = 0; a < t->axes[0].size(); ++a) {
+      ErrorBudget b;
+      b.table = r.table;
+      b.model = r.model;
+      b.theta_i = t->axes[0].values[a];
+      int channels = 0;
+      for (std::size_t k = 0; k < nch; ++k) {
+        auto at = [&](std::size_t c) { return ((a * nphi + 0) * nc + c) * nch + k; };
+        bool predicted = std::isfinite(r.model_values[at(nc - 1)]);
+        double order1 = 0, multiple = 0;
+        for (std::size_t c = 0; c + 1 < nc; ++c) {
+          if (names[c].rfind("order1", 0) == 0) {
+            predicted = predicted && std::isfinite(r.model_values[at(c)]);
+            order1 += r.model_values[at(c)] - v[at(c)];
+          } else {
+            multiple += v[at(c)];
+          }
+        }
+        if (!predicted) continue;
+        ++channels;
+        b.sim += v[at(nc - 1)];
+        b.sim_stderr += se[at(nc - 1)];
+        b.model_value += r.model_values[at(nc - 1)];
+        b.order1_error += order1;
+        b.multiple += multiple;
+      }
+      if (channels == 0) break;  // the model does not predict the order-1 parts
+      for (double* x : {&b.sim, &b.sim_stderr, &b.model_value, &b.order1_error, &b.multiple}) *x /= channels;
+      out.push_back(b);
+    }
+  }
+  return out;
+}
+
 // A grey material makes the RGB channels of a table bit-identical: counting
 // them three times would triple the chi-squared. A channel whose sums equal an
 // earlier channel's in every cell is left out (model value NaN).
@@ -237,6 +284,7 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
       if (r.verdict.status == "FAIL") ++failures;
       cr.checks.push_back(std::move(r));
     }
+    cr.budget = error_budgets(f, cr.checks);
     results.push_back(std::move(cr));
     if (!o.quiet) {
       int bad = 0;
