@@ -53,6 +53,10 @@ class VndfSampler {
   std::vector<std::uint16_t> table_;  // [row: cos theta_i][column: normalised Xi] -> h / sin theta_i, 16-bit
 };
 
+struct PhiSample {
+  double phi, cos_phi, sin_phi;
+};
+
 // The conditional density of phi' given theta' over [-phi_q, phi_q], for
 // i' at azimuth 0 (Eq. 22, 26, 27 with phi_q), and its tent (Eq. 28–31).
 struct PhiConditional {
@@ -71,6 +75,9 @@ struct PhiConditional {
   double tent_inverse(double u) const;                                                   // Eq. 31
   // The triangle cut of the tent sample of u_s (Listing 3, lines 16–24).
   TriangleCut cut(double u_s) const;
+  TriangleCut cut_at(double u_s, double x, double sin_x, double cos_x) const;  // x = tent_inverse(u_s)
+  // phi' (Listing 3) with its cosine and sine.
+  PhiSample sample(double u_s, double u_t) const;
 };
 
 }  // namespace mcref::micrograin
