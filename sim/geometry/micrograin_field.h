@@ -16,6 +16,7 @@
 
 #include "sim/core/rng.h"
 #include "sim/core/vec.h"
+#include "sim/geometry/ray_log.h"
 
 namespace mcref {
 
@@ -109,6 +110,9 @@ class MicrograinField {
 
   // Raw Embree handles, for benchmarks that compare with bare rtcIntersect1.
   RTCScene embree_scene() const { return scene_; }
+  // One rtcIntersect1 call as the tracer makes it (with its self-hit filter
+  // for a ray leaving a grain); benchmarks replay ray logs through it.
+  void embree_intersect(const LoggedRay& ray, RTCRayHit& rh) const;
 
  private:
   void build_grid();
