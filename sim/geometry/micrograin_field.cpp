@@ -235,7 +235,8 @@ Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
         hit.grain = owner_[rh.hit.primID];
         hit.unit_normal = n;
         hit.normal = normal_from_unit(n);
-        hit.position = from_unit(wrap_unit(p));
+        hit.unit_position = wrap_unit(p);
+        hit.position = from_unit(hit.unit_position);
       }
       return hit;
     }
@@ -247,7 +248,8 @@ Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
         p.z = 0;
         hit.unit_normal = {0, 0, 1};
         hit.normal = {0, 0, 1};
-        hit.position = from_unit(wrap_unit(p));
+        hit.unit_position = wrap_unit(p);
+        hit.position = from_unit(hit.unit_position);
       }
       return hit;
     }

@@ -50,6 +50,7 @@ struct Hit {
   Kind kind = Kind::Escape;
   double t = 0;       // distance travelled along the (unit, real-space) direction
   Vec3 position;      // real space, wrapped into the tile
+  Vec3 unit_position; // the same in unit space
   Vec3 normal;        // real-space unit normal (grain: ellipsoid normal; base: +z)
   Vec3 unit_normal;   // unit-space normal (= unit-space position relative to the centre)
   std::uint32_t grain = 0;  // index of the grain (real, not a ghost copy)
