@@ -123,19 +123,6 @@ void MicrograinField::build_scene() {
   rtcCommitScene(scene_);
 }
 
-Vec3 MicrograinField::wrap_unit(Vec3 p) const {
-  // Most points are already inside: a compare, no division.
-  if (!(p.x >= 0 && p.x < side_x_)) {
-    p.x -= side_x_ * std::floor(p.x / side_x_);
-    if (p.x >= side_x_) p.x -= side_x_;  // floor rounding at the upper edge
-  }
-  if (!(p.y >= 0 && p.y < side_y_)) {
-    p.y -= side_y_ * std::floor(p.y / side_y_);
-    if (p.y >= side_y_) p.y -= side_y_;
-  }
-  return p;
-}
-
 Hit MicrograinField::intersect(Vec3 origin, Vec3 direction) const {
   const Vec3 d{direction.x * inv_rx_, direction.y * inv_ry_, direction.z * inv_c_};
   return intersect_unit(to_unit(origin), d);
@@ -178,10 +165,24 @@ void MicrograinField::embree_intersect(const LoggedRay& r, RTCRayHit& rh) const 
   rtcIntersect1(scene_, &context, &rh);
 }
 
-// kDetail = false fills only the kind (and t) of the hit: no normals, no position.
+// kDetail = false fills only the kind and t of the hit: no normals, no position.
+// Every field is given at once: zero-filling the large Hit first costs time.
+template <bool kDetail>
+Hit MicrograinField::make_hit(Hit::Kind kind, double t, Vec3 p, Vec3 unit_normal, std::uint32_t grain) const {
+  if constexpr (kDetail) {
+    const Vec3 up = wrap_unit(p);
+    const Vec3 normal = kind == Hit::Kind::Grain ? normal_from_unit(unit_normal) : unit_normal;
+    return {kind, t, from_unit(up), up, normal, unit_normal, grain};
+  } else {
+    Hit hit;
+    hit.kind = kind;
+    hit.t = t;
+    return hit;
+  }
+}
+
 template <bool kDetail>
 Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
-  Hit hit;
   o = wrap_unit(o);
   double travelled = 0;
   for (int wraps = 0; wraps < kMaxWraps; ++wraps) {
@@ -210,8 +211,8 @@ Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
       // Exact root in double precision for the sphere Embree found.
       const Vec3 c = prim_centres_[rh.hit.primID];
       const Vec3 oc = o - c;
-      const double inv_a = 1 / dot(d, d), b = dot(oc, d), cc = dot(oc, oc) - 1;
-      const double disc = b * b - cc / inv_a;
+      const double a = dot(d, d), b = dot(oc, d), cc = dot(oc, oc) - 1;
+      const double disc = b * b - a * cc, inv_a = 1 / a;
       if (disc < 0) {
         // A spurious hit: Embree grazes a sphere that the double-precision
         // root misses. Step past it by kSkip (unit space, ~1e-4 grain
@@ -227,31 +228,14 @@ Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
       }
       const double t = (t0 >= 0 && std::fabs(t0 - rh.ray.tfar) <= std::fabs(t1 - rh.ray.tfar)) ? t0 : t1;
       if (t >= t_base) break;  // meets the base plane first (a lower-half hit)
-      hit.kind = Hit::Kind::Grain;
-      hit.t = travelled + t;
-      if constexpr (kDetail) {
-        const Vec3 p = o + d * t;
-        const Vec3 n = p - c;  // unit length up to rounding: p is on the unit sphere
-        hit.grain = owner_[rh.hit.primID];
-        hit.unit_normal = n;
-        hit.normal = normal_from_unit(n);
-        hit.unit_position = wrap_unit(p);
-        hit.position = from_unit(hit.unit_position);
-      }
-      return hit;
+      const Vec3 p = o + d * t;
+      // The unit normal is p - c, unit length up to rounding: p is on the unit sphere.
+      return make_hit<kDetail>(Hit::Kind::Grain, travelled + t, p, p - c, owner_[rh.hit.primID]);
     }
     if (t_far == t_base) {
-      hit.kind = Hit::Kind::Base;
-      hit.t = travelled + t_base;
-      if constexpr (kDetail) {
-        Vec3 p = o + d * t_base;
-        p.z = 0;
-        hit.unit_normal = {0, 0, 1};
-        hit.normal = {0, 0, 1};
-        hit.unit_position = wrap_unit(p);
-        hit.position = from_unit(hit.unit_position);
-      }
-      return hit;
+      Vec3 p = o + d * t_base;
+      p.z = 0;
+      return make_hit<kDetail>(Hit::Kind::Base, travelled + t_base, p, {0, 0, 1}, 0);
     }
     if (t_far == t_top) break;
     // Leave the tile through a side and re-enter from the opposite one.
@@ -261,8 +245,7 @@ Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
     if (tx <= ty) o.x = d.x > 0 ? 0 : side_x_;
     if (ty <= tx) o.y = d.y > 0 ? 0 : side_y_;
   }
-  hit.kind = Hit::Kind::Escape;
-  return hit;
+  return Hit{};  // escape
 }
 
 void MicrograinField::for_grains_near(double x, double y, double reach,

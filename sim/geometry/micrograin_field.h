@@ -10,6 +10,7 @@
 // periodically at the tile's sides, so the field is infinite.
 #include <embree3/rtcore.h>
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -107,7 +108,18 @@ class MicrograinField {
     return m * (1 / std::sqrt(dot(m, m)));
   }
   // Wraps a unit-space point into [0, side_x) x [0, side_y).
-  Vec3 wrap_unit(Vec3 p) const;
+  Vec3 wrap_unit(Vec3 p) const {
+    // Most points are already inside: a compare, no division.
+    if (!(p.x >= 0 && p.x < side_x_)) {
+      p.x -= side_x_ * std::floor(p.x / side_x_);
+      if (p.x >= side_x_) p.x -= side_x_;  // floor rounding at the upper edge
+    }
+    if (!(p.y >= 0 && p.y < side_y_)) {
+      p.y -= side_y_ * std::floor(p.y / side_y_);
+      if (p.y >= side_y_) p.y -= side_y_;
+    }
+    return p;
+  }
 
   // Raw Embree handles, for benchmarks that compare with bare rtcIntersect1.
   RTCScene embree_scene() const { return scene_; }
@@ -118,6 +130,8 @@ class MicrograinField {
  private:
   void build_grid();
   void build_scene();
+  template <bool kDetail>
+  Hit make_hit(Hit::Kind kind, double t, Vec3 unit_position, Vec3 unit_normal, std::uint32_t grain) const;
   template <bool kDetail>
   Hit trace(Vec3 unit_origin, Vec3 unit_direction, std::uint32_t start_grain) const;
 
