@@ -15,7 +15,7 @@ inline void sample_uniform_disc(double u1, double u2, double& x, double& y) {
 inline Vec3 sample_cosine_hemisphere(double u1, double u2) {
   double x, y;
   sample_uniform_disc(u1, u2, x, y);
-  return {x, y, std::sqrt(std::fmax(0.0, 1.0 - x * x - y * y))};
+  return {x, y, std::sqrt(1.0 - u1)};  // x^2 + y^2 = u1
 }
 
 // Uniform direction on the unit sphere, pdf = 1/(4 pi).

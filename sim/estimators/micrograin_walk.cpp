@@ -9,8 +9,6 @@ void trace_brdf_path(const MicrograinField& f, const MicrograinMaterials& mat, V
                      BrdfAccumulator& tally, WalkCounters* counters) {
   if (counters) ++counters->paths;
   std::uint64_t* rays = counters ? &counters->rays : nullptr;
-  const MicrograinGeometry& g = f.geometry();
-  auto to_unit_dir = [&](Vec3 d) { return Vec3{d.x / g.r_x(), d.y / g.r_y(), d.z / g.c()}; };
   Vec3 d = -wi;
   Vec3 o = {rng.uniform() * f.unit_side_x(), rng.uniform() * f.unit_side_y(), 1.0};
   std::uint32_t start = MicrograinField::kNoGrain;
@@ -20,7 +18,7 @@ void trace_brdf_path(const MicrograinField& f, const MicrograinMaterials& mat, V
   for (;;) {
     if (rays) ++*rays;
     // A ray leaving a grain does not hit that grain again (the field skips self-hits).
-    const Hit h = f.intersect_unit(o, to_unit_dir(d), start);
+    const Hit h = f.intersect_unit(o, f.to_unit(d), start);
     if (h.kind == Hit::Kind::Escape) {
       if (order > 0) tally.add(d, order, first_class, throughput, delta);
       return;
@@ -41,7 +39,7 @@ void trace_brdf_path(const MicrograinField& f, const MicrograinMaterials& mat, V
       if (rng.uniform() >= q) return;
       throughput = throughput / q;
     }
-    o = f.to_unit(h.position);
+    o = h.unit_position;
     start = grain ? h.grain : MicrograinField::kNoGrain;
   }
 }

@@ -17,6 +17,23 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kMaxWraps = 1 << 20;
 // Step past a spurious self-hit (unit-space length).
 constexpr float kSkip = 1e-4f;
+
+// The float origin of a ray leaving a grain can sit inside that grain by
+// ~1e-7 of the tile size. A context filter rejects such self-hits inside
+// Embree's traversal (a convex grain is not met again by a ray leaving it).
+struct LeavingContext : RTCIntersectContext {
+  const Vec3* prim_centres;
+  const std::uint32_t* owner;
+  const LoggedRay* ray;
+};
+
+void reject_self_hit(const RTCFilterFunctionNArguments* args) {
+  const auto* c = static_cast<const LeavingContext*>(args->context);
+  const std::uint32_t prim = RTCHitN_primID(args->hit, args->N, 0);
+  if (c->owner[prim] != c->ray->leaving) return;
+  const Vec3 oc = c->ray->origin - c->prim_centres[prim];  // the copy the origin lies on, not a ghost
+  if (std::fabs(dot(oc, oc) - 1) < 1e-6) args->valid[0] = 0;
+}
 }  // namespace
 
 double MicrograinGeometry::c() const { return radius * std::sqrt(beta_x * beta_y); }
@@ -87,6 +104,7 @@ void MicrograinField::build_scene() {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("Embree device creation failed");
   scene_ = rtcNewScene(device_);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
   if (!prim_centres_.empty()) {
     RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
@@ -103,19 +121,6 @@ void MicrograinField::build_scene() {
     rtcReleaseGeometry(geom);
   }
   rtcCommitScene(scene_);
-}
-
-Vec3 MicrograinField::wrap_unit(Vec3 p) const {
-  // Most points are already inside: a compare, no division.
-  if (!(p.x >= 0 && p.x < side_x_)) {
-    p.x -= side_x_ * std::floor(p.x / side_x_);
-    if (p.x >= side_x_) p.x -= side_x_;  // floor rounding at the upper edge
-  }
-  if (!(p.y >= 0 && p.y < side_y_)) {
-    p.y -= side_y_ * std::floor(p.y / side_y_);
-    if (p.y >= side_y_) p.y -= side_y_;
-  }
-  return p;
 }
 
 Hit MicrograinField::intersect(Vec3 origin, Vec3 direction) const {
@@ -135,14 +140,51 @@ bool MicrograinField::occluded_unit(Vec3 o, Vec3 d, std::uint32_t start_grain) c
   return trace<false>(o, d, start_grain).kind != Hit::Kind::Escape;
 }
 
-// kDetail = false fills only the kind (and t) of the hit: no normals, no position.
+void MicrograinField::embree_intersect(const LoggedRay& r, RTCRayHit& rh) const {
+  rh.ray.org_x = r.org[0];
+  rh.ray.org_y = r.org[1];
+  rh.ray.org_z = r.org[2];
+  rh.ray.dir_x = r.dir[0];
+  rh.ray.dir_y = r.dir[1];
+  rh.ray.dir_z = r.dir[2];
+  rh.ray.tnear = r.tnear;
+  rh.ray.tfar = r.tfar;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.flags = 0;
+  rh.ray.time = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  LeavingContext context;
+  rtcInitIntersectContext(&context);
+  if (r.leaving != kNoGrain) {
+    context.filter = reject_self_hit;
+    context.prim_centres = prim_centres_.data();
+    context.owner = owner_.data();
+    context.ray = &r;
+  }
+  rtcIntersect1(scene_, &context, &rh);
+}
+
+// kDetail = false fills only the kind and t of the hit: no normals, no position.
+// Every field is given at once: zero-filling the large Hit first costs time.
+template <bool kDetail>
+Hit MicrograinField::make_hit(Hit::Kind kind, double t, Vec3 p, Vec3 unit_normal, std::uint32_t grain) const {
+  if constexpr (kDetail) {
+    const Vec3 up = wrap_unit(p);
+    const Vec3 normal = kind == Hit::Kind::Grain ? normal_from_unit(unit_normal) : unit_normal;
+    return {kind, t, from_unit(up), up, normal, unit_normal, grain};
+  } else {
+    Hit hit;
+    hit.kind = kind;
+    hit.t = t;
+    return hit;
+  }
+}
+
 template <bool kDetail>
 Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
-  Hit hit;
   o = wrap_unit(o);
   double travelled = 0;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
   for (int wraps = 0; wraps < kMaxWraps; ++wraps) {
     if (d.z >= 0 && o.z >= 1) break;  // above every grain, going up: escape
     const double tx = d.x > 0 ? (side_x_ - o.x) / d.x : (d.x < 0 ? -o.x / d.x : kInf);
@@ -154,37 +196,27 @@ Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
 
     float t_near = 0.0f;
     for (;;) {
+      // Self-hits only on the first segment: after a wrap the ray may meet
+      // its start grain again through the periodic tile.
+      const LoggedRay r{{static_cast<float>(o.x), static_cast<float>(o.y), static_cast<float>(o.z)},
+                        {static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z)},
+                        t_near,
+                        static_cast<float>(t_far) * (1.0f + 1e-6f),
+                        o,
+                        wraps == 0 ? start_grain : kNoGrain};
+      if (t_ray_log) t_ray_log->push_back(r);
       RTCRayHit rh;
-      rh.ray.org_x = static_cast<float>(o.x);
-      rh.ray.org_y = static_cast<float>(o.y);
-      rh.ray.org_z = static_cast<float>(o.z);
-      rh.ray.dir_x = static_cast<float>(d.x);
-      rh.ray.dir_y = static_cast<float>(d.y);
-      rh.ray.dir_z = static_cast<float>(d.z);
-      rh.ray.tnear = t_near;
-      rh.ray.tfar = static_cast<float>(t_far) * (1.0f + 1e-6f);
-      rh.ray.mask = 0xFFFFFFFFu;
-      rh.ray.flags = 0;
-      rh.ray.time = 0;
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-      if (t_ray_log)
-        t_ray_log->push_back({{rh.ray.org_x, rh.ray.org_y, rh.ray.org_z}, {rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z},
-                              rh.ray.tnear, rh.ray.tfar});
-      rtcIntersect1(scene_, &context, &rh);
+      embree_intersect(r, rh);
       if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
       // Exact root in double precision for the sphere Embree found.
       const Vec3 c = prim_centres_[rh.hit.primID];
       const Vec3 oc = o - c;
-      const double inv_a = 1 / dot(d, d), b = dot(oc, d), cc = dot(oc, oc) - 1;
-      const double disc = b * b - cc / inv_a;
-      // Leaving the grain we start on (convex, so only a numerical self-hit).
-      const bool self = wraps == 0 && owner_[rh.hit.primID] == start_grain && std::fabs(cc) < 1e-6;
-      if (self || disc < 0) {
-        // A spurious hit: the float origin of a ray leaving a grain can sit
-        // inside it by ~1e-7 of the tile size, or Embree grazes a sphere that
-        // the double-precision root misses. Step past it by kSkip (unit
-        // space, ~1e-4 grain radius): an ulp-sized step could crawl for ages.
+      const double a = dot(d, d), b = dot(oc, d), cc = dot(oc, oc) - 1;
+      const double disc = b * b - a * cc, inv_a = 1 / a;
+      if (disc < 0) {
+        // A spurious hit: Embree grazes a sphere that the double-precision
+        // root misses. Step past it by kSkip (unit space, ~1e-4 grain
+        // radius): an ulp-sized step could crawl for ages.
         t_near = rh.ray.tfar + kSkip;
         continue;
       }
@@ -196,29 +228,14 @@ Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
       }
       const double t = (t0 >= 0 && std::fabs(t0 - rh.ray.tfar) <= std::fabs(t1 - rh.ray.tfar)) ? t0 : t1;
       if (t >= t_base) break;  // meets the base plane first (a lower-half hit)
-      hit.kind = Hit::Kind::Grain;
-      hit.t = travelled + t;
-      if constexpr (kDetail) {
-        const Vec3 p = o + d * t;
-        const Vec3 n = p - c;  // unit length up to rounding: p is on the unit sphere
-        hit.grain = owner_[rh.hit.primID];
-        hit.unit_normal = n;
-        hit.normal = normal_from_unit(n);
-        hit.position = from_unit(wrap_unit(p));
-      }
-      return hit;
+      const Vec3 p = o + d * t;
+      // The unit normal is p - c, unit length up to rounding: p is on the unit sphere.
+      return make_hit<kDetail>(Hit::Kind::Grain, travelled + t, p, p - c, owner_[rh.hit.primID]);
     }
     if (t_far == t_base) {
-      hit.kind = Hit::Kind::Base;
-      hit.t = travelled + t_base;
-      if constexpr (kDetail) {
-        Vec3 p = o + d * t_base;
-        p.z = 0;
-        hit.unit_normal = {0, 0, 1};
-        hit.normal = {0, 0, 1};
-        hit.position = from_unit(wrap_unit(p));
-      }
-      return hit;
+      Vec3 p = o + d * t_base;
+      p.z = 0;
+      return make_hit<kDetail>(Hit::Kind::Base, travelled + t_base, p, {0, 0, 1}, 0);
     }
     if (t_far == t_top) break;
     // Leave the tile through a side and re-enter from the opposite one.
@@ -228,8 +245,7 @@ Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
     if (tx <= ty) o.x = d.x > 0 ? 0 : side_x_;
     if (ty <= tx) o.y = d.y > 0 ? 0 : side_y_;
   }
-  hit.kind = Hit::Kind::Escape;
-  return hit;
+  return Hit{};  // escape
 }
 
 void MicrograinField::for_grains_near(double x, double y, double reach,

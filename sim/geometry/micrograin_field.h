@@ -10,12 +10,14 @@
 // periodically at the tile's sides, so the field is infinite.
 #include <embree3/rtcore.h>
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <vector>
 
 #include "sim/core/rng.h"
 #include "sim/core/vec.h"
+#include "sim/geometry/ray_log.h"
 
 namespace mcref {
 
@@ -49,6 +51,7 @@ struct Hit {
   Kind kind = Kind::Escape;
   double t = 0;       // distance travelled along the (unit, real-space) direction
   Vec3 position;      // real space, wrapped into the tile
+  Vec3 unit_position; // the same in unit space
   Vec3 normal;        // real-space unit normal (grain: ellipsoid normal; base: +z)
   Vec3 unit_normal;   // unit-space normal (= unit-space position relative to the centre)
   std::uint32_t grain = 0;  // index of the grain (real, not a ghost copy)
@@ -105,14 +108,30 @@ class MicrograinField {
     return m * (1 / std::sqrt(dot(m, m)));
   }
   // Wraps a unit-space point into [0, side_x) x [0, side_y).
-  Vec3 wrap_unit(Vec3 p) const;
+  Vec3 wrap_unit(Vec3 p) const {
+    // Most points are already inside: a compare, no division.
+    if (!(p.x >= 0 && p.x < side_x_)) {
+      p.x -= side_x_ * std::floor(p.x / side_x_);
+      if (p.x >= side_x_) p.x -= side_x_;  // floor rounding at the upper edge
+    }
+    if (!(p.y >= 0 && p.y < side_y_)) {
+      p.y -= side_y_ * std::floor(p.y / side_y_);
+      if (p.y >= side_y_) p.y -= side_y_;
+    }
+    return p;
+  }
 
   // Raw Embree handles, for benchmarks that compare with bare rtcIntersect1.
   RTCScene embree_scene() const { return scene_; }
+  // One rtcIntersect1 call as the tracer makes it (with its self-hit filter
+  // for a ray leaving a grain); benchmarks replay ray logs through it.
+  void embree_intersect(const LoggedRay& ray, RTCRayHit& rh) const;
 
  private:
   void build_grid();
   void build_scene();
+  template <bool kDetail>
+  Hit make_hit(Hit::Kind kind, double t, Vec3 unit_position, Vec3 unit_normal, std::uint32_t grain) const;
   template <bool kDetail>
   Hit trace(Vec3 unit_origin, Vec3 unit_direction, std::uint32_t start_grain) const;
 

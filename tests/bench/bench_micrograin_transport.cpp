@@ -4,8 +4,9 @@
 //    theta_i = 20, 40, 60, 80 deg, 10^7 samples each, one thread, and the
 //    vNDF/NDF ratio (paper, Table 2: 2.97–3.79 with triangle-cut phi).
 // 2. Paths/s and rays/s of the BRDF walk (sim/estimators/micrograin_walk) on
-//    2 threads (run_chunks, as the estimator), against bare rtcIntersect1 rays/s
-//    on the same Embree scene (first-hit rays from the top, 2 threads). Field:
+//    2 threads (run_chunks, as the estimator; optional 2nd argument: threads),
+//    against the walk's own rtcIntersect1 calls replayed bare (same rays, same
+//    self-hit filter) and first-hit rays from the top on the same scene. Field:
 //    tau0 = 0.6, beta = 1, tile 200; Lambertian grains 0.8, base 0.5; theta_i = 40.
 //    Walk and bare runs alternate, best of 5, to be robust to other load.
 #include <embree3/rtcore.h>
@@ -69,7 +70,8 @@ int main(int argc, char** argv) {
   }
   if (part == "samplers") return 0;
 
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, argc > 2 ? std::atoi(argv[2]) : 2);
+  const int threads = argc > 2 ? std::atoi(argv[2]) : 2;
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   MicrograinGeometry g;
   g.tau0 = tau0;
   g.beta_x = g.beta_y = 1.0;
@@ -108,25 +110,9 @@ int main(int argc, char** argv) {
     for (std::uint64_t k = 0; k < paths; ++k) trace_brdf_path(f, mat, wi, 0, rng, tally);
   }
   t_ray_log = nullptr;
-  RTCScene scene = f.embree_scene();
   auto trace = [&](const LoggedRay& r) {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
     RTCRayHit rh;
-    rh.ray.org_x = r.org[0];
-    rh.ray.org_y = r.org[1];
-    rh.ray.org_z = r.org[2];
-    rh.ray.dir_x = r.dir[0];
-    rh.ray.dir_y = r.dir[1];
-    rh.ray.dir_z = r.dir[2];
-    rh.ray.tnear = r.tnear;
-    rh.ray.tfar = r.tfar;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.flags = 0;
-    rh.ray.time = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene, &context, &rh);
+    f.embree_intersect(r, rh);
     return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
   };
   auto replay = [&](const std::vector<LoggedRay>& v) {
@@ -145,7 +131,8 @@ int main(int argc, char** argv) {
     const Vec3 d = -unit_direction(f, wi);
     for (LoggedRay& r : top) {
       const Vec3 o = uniform_top_origin(f, rng);
-      r = {{float(o.x), float(o.y), float(o.z)}, {float(d.x), float(d.y), float(d.z)}, 0.0f, float(-1.0 / d.z)};
+      r = {{float(o.x), float(o.y), float(o.z)}, {float(d.x), float(d.y), float(d.z)}, 0.0f, float(-1.0 / d.z),
+           o, MicrograinField::kNoGrain};
     }
   }
 
@@ -164,11 +151,11 @@ int main(int argc, char** argv) {
     t_top = std::min(t_top, now() - t0);
   }
   const double calls = static_cast<double>(rays.size());
-  std::printf("\nBRDF walk, 2 threads, %llu paths: %.3g paths/s, %.3g rays/s (%.2f rays/path, %.2f rtcIntersect1/path)\n",
-              static_cast<unsigned long long>(paths), paths / t_walk, unit_rays / t_walk, unit_rays / paths,
+  std::printf("\nBRDF walk, %d threads, %llu paths: %.3g paths/s, %.3g rays/s (%.2f rays/path, %.2f rtcIntersect1/path)\n",
+              threads, static_cast<unsigned long long>(paths), paths / t_walk, unit_rays / t_walk, unit_rays / paths,
               calls / paths);
-  std::printf("the same rtcIntersect1 calls replayed bare, 2 threads: %.3g calls/s\n", calls / t_replay);
-  std::printf("first-hit rays from the top, bare, 2 threads: %.3g rays/s\n", calls / t_top);
+  std::printf("the same rtcIntersect1 calls replayed bare, %d threads: %.3g calls/s\n", threads, calls / t_replay);
+  std::printf("first-hit rays from the top, bare, %d threads: %.3g rays/s\n", threads, calls / t_top);
   std::printf("walk overhead over tracing its own rays: %.0f %% (target < 30 %%)\n", 100 * (t_walk / t_replay - 1));
   std::printf("walk time / first-hit time for as many rays: %.2f\n", t_walk / t_top);
   return 0;
