@@ -17,7 +17,7 @@ std::size_t BrdfLayout::binned_size() const {
 }
 
 std::size_t BrdfLayout::sums_size() const {
-  return binned_size() + 2 * static_cast<std::size_t>(components()) * hemispheres() * 3;
+  return binned_size() + (2 * static_cast<std::size_t>(components()) + 1) * hemispheres() * 3;
 }
 
 BrdfAccumulator::BrdfAccumulator(const BrdfLayout& layout, double phi_i, std::vector<double>& sums)
@@ -29,6 +29,11 @@ void BrdfAccumulator::add(Vec3 wo, int order, int order1_class, const Rgb& weigh
   const int h = wo.z >= 0 ? 0 : 1;
   if (h == 1 && !layout_.transmission) return;
   const int H = layout_.hemispheres(), T = layout_.theta_o_bins, P = layout_.phi_bins;
+  if (order == 0) {  // unscattered: a delta lobe in the total, in no component
+    const std::size_t unscattered = layout_.binned_size() + 2 * static_cast<std::size_t>(layout_.components()) * H * 3;
+    for (int k = 0; k < 3; ++k) sums_[unscattered + h * 3 + k] += weight[k];
+    return;
+  }
   const std::size_t ch = static_cast<std::size_t>(c * H + h) * 3;
   const std::size_t energy = layout_.binned_size() + (delta ? layout_.components() * H * 3 : 0) + ch;
   for (int k = 0; k < 3; ++k) sums_[energy + k] += weight[k];
@@ -90,6 +95,7 @@ std::vector<Table> make_brdf_tables(const std::string& name, const std::vector<d
                           ? what + " directional energy per component (delta lobes included)"
                           : what + " energy in delta lobes (exact mirror / unscattered) per component";
       t.attributes["components"] = names;
+      t.attributes["total"] = "every path; the unscattered light (order 0) is in the total only, in no component";
       out.push_back(t);
     }
   }
@@ -130,6 +136,7 @@ void add_brdf_batch(const std::vector<std::vector<double>>& sums, double paths, 
               const double non_delta = s[l.binned_size() + i], in_delta = s[l.binned_size() + C * H * 3 + i];
               e += kind == 0 ? non_delta + in_delta : in_delta;
             }
+            if (part == C) e += s[l.binned_size() + 2 * C * H * 3 + h * 3 + k];  // unscattered, total only
             dst.push_back(e / paths);
           }
       }

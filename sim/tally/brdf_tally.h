@@ -35,6 +35,7 @@ struct BrdfLayout {
   //   [component][hemisphere][theta_o][phi][3]   binned energy
   //   [component][hemisphere][3]                 total energy (non-delta)
   //   [component][hemisphere][3]                 delta-lobe energy
+  //   [hemisphere][3]                            unscattered (order 0) energy
   std::size_t binned_size() const;
   std::size_t sums_size() const;
 };
@@ -43,8 +44,9 @@ class BrdfAccumulator {
  public:
   BrdfAccumulator(const BrdfLayout& layout, double phi_i, std::vector<double>& sums);
   // A path leaves toward wo (unit; wo.z < 0 is transmission) carrying
-  // `weight` per unit incident energy; `order` >= 1 counts scattering events;
-  // `order1_class` indexes layout.order1_classes (used when order == 1).
+  // `weight` per unit incident energy; `order` counts scattering events
+  // (0: unscattered, a delta lobe counted in the totals only); `order1_class`
+  // indexes layout.order1_classes (used when order == 1).
   void add(Vec3 wo, int order, int order1_class, const Rgb& weight, bool delta);
 
  private:

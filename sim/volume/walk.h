@@ -6,8 +6,8 @@
 // Orders count scattering events (volume and substrate); order-1 paths are
 // classed by where their event happened (0 = volume, 1 = substrate).
 // Paths that leave without any volume event and with only specular substrate
-// bounces are delta lobes: the unscattered transmission (order 0, recorded
-// under class volume, only if delta_transmission) and the mirror reflection of
+// bounces are delta lobes: the unscattered transmission (order 0, in the
+// totals only, if delta_transmission) and the mirror reflection of
 // a smooth conductor. Russian roulette from order 2 on keeps it unbiased;
 // max_order > 0 drops paths that would scatter more often (the paper's cap).
 #include <cstdint>
