@@ -6,12 +6,12 @@
 // terms approximate the true visibility); see micrograin_bsdf.h.
 #include <cmath>
 #include <map>
-#include <mutex>
 #include <stdexcept>
 
 #include "models/micrograin/micrograin_bsdf.h"
 #include "sim/core/quadrature.h"
 #include "validate/model_evaluation.h"
+#include "validate/simulated_pore_base.h"
 
 namespace mcref {
 
@@ -40,6 +40,7 @@ struct Spec {
   enum class Part { Grain, Base, Total } part;
   enum class Form { Lrpb23, Gdist } form;
   mg::LambdaMethod lambda = mg::LambdaMethod::Quadrature;
+  bool simulated_vp = false;  // base term with V_p(i, o) measured (validate/simulated_pore_base.h)
 };
 
 const std::map<std::string, Spec>& specs() {
@@ -58,6 +59,9 @@ const std::map<std::string, Spec>& specs() {
       {"gdist_total", {P::Total, F::Gdist}},
       {"lrpb23_albedo_quadrature", {P::Total, F::Lrpb23, L::Quadrature}},
       {"gdist_albedo", {P::Total, F::Gdist}},
+      {"gdist_base_simvp", {P::Base, F::Gdist, L::Quadrature, true}},
+      {"gdist_total_simvp", {P::Total, F::Gdist, L::Quadrature, true}},
+      {"gdist_albedo_simvp", {P::Total, F::Gdist, L::Quadrature, true}},
   };
   return s;
 }
@@ -84,6 +88,16 @@ std::vector<ModelInfo> model_list() {
       {"gdist_albedo", "albedo", false,
        "directional albedo of vNDF Eq. 1 with G_dist, delta lobe included, and of its grain and base parts (order-1 "
        "components)",
+       "micrograin", ""},
+      {"gdist_base_simvp", "brdf", false,
+       "(1 - tau0) V_p(i, o) f_B (vNDF Eq. 1) with the bidirectional pore visibility V_p measured on an explicit field "
+       "(no closed form): exact for a single event on the base, up to its own Monte Carlo noise (~1 %)",
+       "micrograin", "order1_base"},
+      {"gdist_total_simvp", "brdf", false, "tau0 f_S with G_dist + (1 - tau0) V_p(i, o) f_B with V_p measured (vNDF Eq. 1)",
+       "micrograin", "total"},
+      {"gdist_albedo_simvp", "albedo", false,
+       "directional albedo of vNDF Eq. 1 with G_dist and V_p(i, o) measured; grain and base parts in the order-1 "
+       "components",
        "micrograin", ""},
   };
   return m;
@@ -194,6 +208,36 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
   return out;
 }
 
+// The Gdist form with the measured V_p: the grain part as gdist_*, the base
+// part from simulated_pore_base.
+std::vector<double> evaluate_simulated_vp(const Spec& s, const Table& t, const Experiment& ex, const mg::GrainField& f) {
+  const MicrograinMaterials& mat = ex.materials;
+  const BaseReflection base{
+      [&](int ch, Vec3 i, Vec3 o) { return mg::flat_brdf(channel_of(mat.base, ch), i, o); },
+      [&](int ch, Vec3 i) { return mg::flat_delta_energy(channel_of(mat.base, ch), i.z); }};
+  std::vector<double> out = simulated_pore_base(t, ex, base);
+  if (s.part == Spec::Part::Base) return out;
+  const Spec grain{Spec::Part::Grain, Spec::Form::Gdist};
+  if (t.quantity == "brdf") {
+    const std::vector<double> g = evaluate_brdf(grain, t, ex, f);
+    for (std::size_t k = 0; k < out.size(); ++k) out[k] += g[k];
+    return out;
+  }
+  const bool delta_table = t.name.size() >= 6 && t.name.compare(t.name.size() - 6, 6, "_delta") == 0;
+  if (delta_table) return out;
+  const std::vector<double> g = evaluate_albedo(grain, t, ex, f);  // its order1_grain component
+  const Axis &ti = t.axes[0], &pi = t.axes[1];
+  const std::size_t grain_component = 0, total = t.axes[2].size() - 1;
+  for (std::size_t a = 0; a < ti.size(); ++a)
+    for (std::size_t b = 0; b < pi.size(); ++b)
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::size_t gi = t.index({a, b, grain_component, k});
+        out[gi] = g[gi];
+        out[t.index({a, b, total, k})] += g[gi];
+      }
+  return out;
+}
+
 std::vector<double> evaluate(const std::string& model, const Table& t, const Experiment& ex) {
   const auto it = specs().find(model);
   if (it == specs().end()) throw std::invalid_argument("no model " + model);
@@ -202,6 +246,7 @@ std::vector<double> evaluate(const std::string& model, const Table& t, const Exp
   if (geo.anisotropic() && it->second.form == Spec::Form::Lrpb23)
     throw std::invalid_argument("model " + model + " is defined for isotropic grains only");
   const mg::GrainField f{geo.tau0, geo.beta_x, geo.beta_y};
+  if (it->second.simulated_vp) return evaluate_simulated_vp(it->second, t, ex, f);
   if (t.quantity == "brdf") return evaluate_brdf(it->second, t, ex, f);
   if (t.quantity == "albedo") return evaluate_albedo(it->second, t, ex, f);
   throw std::invalid_argument("model " + model + " does not predict " + t.quantity);

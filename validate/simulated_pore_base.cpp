@@ -1,0 +1,124 @@
+#include "validate/simulated_pore_base.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+#include "sim/core/warp.h"
+#include "sim/estimators/estimator.h"
+#include "sim/geometry/micrograin_field.h"
+
+namespace mcref {
+
+namespace {
+
+constexpr std::uint64_t kPorePoints = 40000;                // per incident direction
+constexpr std::uint64_t kSeed = 0x706f72655f766973ULL;      // "pore_vis": field and streams
+constexpr int kAlbedoDirections = 16;                        // cosine-weighted o per pore point
+// V_p is an ensemble property: one field, but a wide one (10^4 to 10^5
+// grains), so that its own realisation departs from the mean by < 1 %.
+constexpr double kMinTile = 400;  // grain radii
+
+// A uniform point of the base that lies in a pore (under no grain).
+Vec3 pore_point(const MicrograinField& f, Rng& rng) {
+  for (;;) {
+    const Vec3 p{rng.uniform() * f.unit_side_x(), rng.uniform() * f.unit_side_y(), 0.0};
+    if (f.nearest_centre_distance(p.x, p.y) >= 1.0) return p;
+  }
+}
+
+bool visible(const MicrograinField& f, Vec3 p, Vec3 w) {
+  return !f.occluded_unit(p, unit_direction(f, w), MicrograinField::kNoGrain);
+}
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+std::vector<double> evaluate(const Table& t, const Experiment& ex, const BaseReflection& base) {
+  MicrograinGeometry geometry = ex.micrograin;
+  geometry.tile = std::max(geometry.tile, kMinTile);
+  const MicrograinField f(geometry, kSeed);
+  const double pores = 1 - ex.micrograin.tau0;
+  const double n = static_cast<double>(kPorePoints);
+  std::vector<double> out(t.cells(), NAN);
+  const Axis &ti = t.axes[0], &pi = t.axes[1];
+  const bool delta_only = ends_with(t.name, "_delta");
+  std::uint64_t dir = 0;
+  for (std::size_t a = 0; a < ti.size(); ++a)
+    for (std::size_t b = 0; b < pi.size(); ++b, ++dir) {
+      const Vec3 wi = spherical_direction(ti.values[a], pi.values[b]);
+      const std::uint64_t key = stream_seed({kSeed, dir});
+      if (t.quantity == "brdf") {
+        const Axis &to = t.axes[2], &ph = t.axes[3];
+        const std::size_t np = ph.size();
+        const Sums s = run_chunks(kPorePoints, to.size() * np * 3, key, [&](Rng& rng, std::uint64_t count, Sums& acc) {
+          for (std::uint64_t k = 0; k < count; ++k) {
+            const Vec3 p = pore_point(f, rng);
+            if (!visible(f, p, wi)) continue;
+            for (std::size_t c = 0; c < to.size(); ++c)
+              for (std::size_t d = 0; d < np; ++d) {
+                // o cosine-weighted in the cell: mu^2 uniform, phi uniform.
+                const double m0 = std::cos(to.upper(c)), m1 = std::cos(to.lower(c));
+                const double mu = std::sqrt(m0 * m0 + rng.uniform() * (m1 * m1 - m0 * m0));
+                const double phi = pi.values[b] + ph.lower(d) + rng.uniform() * (ph.upper(d) - ph.lower(d));
+                const Vec3 wo = spherical_direction(std::acos(mu), phi);
+                if (!visible(f, p, wo)) continue;
+                for (int ch = 0; ch < 3; ++ch) acc[(c * np + d) * 3 + ch] += base.brdf(ch, wi, wo);
+              }
+          }
+        });
+        for (std::size_t c = 0; c < to.size(); ++c)
+          for (std::size_t d = 0; d < np; ++d)
+            for (std::size_t ch = 0; ch < 3; ++ch) out[t.index({a, b, c, d, ch})] = pores * s[(c * np + d) * 3 + ch] / n;
+      } else {  // albedo or delta: the order1_base and total components
+        const Vec3 mirror{-wi.x, -wi.y, wi.z};
+        bool has_delta = false;
+        for (int ch = 0; ch < 3; ++ch) has_delta = has_delta || base.delta_energy(ch, wi) > 0;
+        const Sums s = run_chunks(kPorePoints, 6, key, [&](Rng& rng, std::uint64_t count, Sums& acc) {
+          for (std::uint64_t k = 0; k < count; ++k) {
+            const Vec3 p = pore_point(f, rng);
+            if (!visible(f, p, wi)) continue;
+            if (!delta_only)
+              for (int j = 0; j < kAlbedoDirections; ++j) {
+                const Vec3 wo = sample_cosine_hemisphere(rng.uniform(), rng.uniform());
+                if (!visible(f, p, wo)) continue;
+                for (int ch = 0; ch < 3; ++ch) acc[ch] += kPi * base.brdf(ch, wi, wo) / kAlbedoDirections;
+              }
+            if (has_delta && visible(f, p, mirror))
+              for (int ch = 0; ch < 3; ++ch) acc[3 + ch] += base.delta_energy(ch, wi);
+          }
+        });
+        const std::size_t base_component = 1, total = t.axes[2].size() - 1;  // order1_base, total
+        for (std::size_t ch = 0; ch < 3; ++ch) {
+          const double e = pores * ((delta_only ? 0.0 : s[ch]) + s[3 + ch]) / n;
+          out[t.index({a, b, base_component, ch})] = e;
+          out[t.index({a, b, total, ch})] = e;
+        }
+      }
+    }
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> simulated_pore_base(const Table& t, const Experiment& ex, const BaseReflection& base) {
+  // Several checks share a table's axes (total and order-1 parts): estimate once.
+  std::ostringstream key;
+  key.precision(17);
+  key << ex.text << '|' << t.quantity << '|' << ends_with(t.name, "_delta");
+  for (const Axis& a : t.axes) {
+    key << '|' << a.name;
+    for (double v : a.values) key << ',' << v;
+  }
+  static std::mutex mutex;
+  static std::map<std::string, std::vector<double>> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  const auto it = cache.find(key.str());
+  if (it != cache.end()) return it->second;
+  return cache[key.str()] = evaluate(t, ex, base);
+}
+
+}  // namespace mcref
