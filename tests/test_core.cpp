@@ -97,6 +97,21 @@ TEST(SmallAngle, MatchesTheLibrary) {
   EXPECT_EQ(far.cos, std::cos(2.5));
 }
 
+TEST(SmallAngle, TurnMatchesTheLibrary) {
+  double worst = 0;
+  for (int k = 0; k <= 40000; ++k) {
+    const double u = k / 40000.0 + (k % 7) * 1e-7;  // [0, 1], across every quarter-turn boundary
+    const SinCos r = sincos_turn(u);
+    worst = std::max({worst, std::fabs(r.sin - std::sin(2 * kPi * u)), std::fabs(r.cos - std::cos(2 * kPi * u))});
+  }
+  EXPECT_LT(worst, 3e-15);
+  EXPECT_EQ(sincos_turn(0.25).cos, 0.0);  // exact quarter turns
+  EXPECT_EQ(sincos_turn(0.5).sin, 0.0);
+  EXPECT_EQ(sincos_turn(0.75).sin, -1.0);
+  const SinCos back = sincos_turn(-0.3);  // outside [0, 2^50): the library
+  EXPECT_EQ(back.sin, std::sin(2 * kPi * -0.3));
+}
+
 TEST(TriangleCut, MapsUniformSamplesOntoTheTarget) {
   // Target f(x) = 2x on [0, 1] (F = x^2) from the uniform q = 1 (x_a = u_s):
   // every cut is valid, and F(x) of the mapped samples is uniform. Chi-square

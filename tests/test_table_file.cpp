@@ -1,5 +1,6 @@
 // sim/tally/table and sim/io/table_file: HDF5 round trip, errors that name
-// the file, atomic writes, exact merging, the stderr formula.
+// the file, atomic writes, exact merging, the stderr formula; the azimuth
+// bins of the BRDF tally.
 #include <gtest/gtest.h>
 #include <hdf5.h>
 #include <hdf5_hl.h>
@@ -16,6 +17,7 @@
 #include "sim/core/rng.h"
 #include "sim/core/vec.h"
 #include "sim/io/table_file.h"
+#include "sim/tally/azimuth_bins.h"
 #include "sim/tally/table.h"
 
 using namespace mcref;
@@ -396,4 +398,31 @@ TEST(TableAxis, FindBinAndRowMajorIndex) {
   Table t("t", "q", {Axis::points("p", "1", {1, 2}), a, b});
   EXPECT_EQ(t.cells(), 18u);
   EXPECT_EQ(t.index({1, 2, 1}), 1u * 9 + 2 * 3 + 1);
+}
+
+TEST(AzimuthBins, SameBinAsAtan2) {
+  Rng rng(5);
+  for (const bool folded : {true, false})
+    for (const int bins : {1, 2, 3, 18, 360, 1000})
+      for (const double phi_i : {0.0, 0.7, 3.5, -2.0}) {
+        const AzimuthBins az(bins, phi_i, folded);
+        const double span = folded ? kPi : 2 * kPi;
+        int edge_cases = 0;
+        for (int k = 0; k < 20000; ++k) {
+          const double a = 2 * kPi * rng.uniform(), r = rng.uniform();
+          const Vec3 w{r * std::cos(a), r * std::sin(a), 0.3};
+          const double x = relative_azimuth(spherical_phi(w), phi_i, folded) / span * bins;
+          const int expected = std::min(bins - 1, static_cast<int>(x));
+          const int got = az.bin(w);
+          // Only a direction within rounding of an edge may land on the other side.
+          const double from_edge = std::fabs(x - std::round(x)) * span / bins;
+          if (got != expected && from_edge < 1e-12) ++edge_cases;
+          else EXPECT_EQ(got, expected) << bins << " " << phi_i << " " << a;
+        }
+        EXPECT_LE(edge_cases, 2);
+      }
+  const AzimuthBins az(18, 0.0, true);
+  EXPECT_EQ(az.bin({0, 0, 1}), 0);  // straight up: bin 0, as atan2(0, 0) = 0
+  EXPECT_EQ(az.bin({-1, 0, 0}), 17);
+  EXPECT_EQ(az.bin({1, 1e-300, 0}), 0);
 }

@@ -1,14 +1,16 @@
 #pragma once
 // Warps from the unit square to common domains (pbrt-v4 style).
+#include "sim/core/small_angle.h"
 #include "sim/core/vec.h"
 
 namespace mcref {
 
 // Uniform point on the unit disc (concentric map not needed: polar is exact).
 inline void sample_uniform_disc(double u1, double u2, double& x, double& y) {
-  const double r = std::sqrt(u1), phi = 2 * kPi * u2;
-  x = r * std::cos(phi);
-  y = r * std::sin(phi);
+  const double r = std::sqrt(u1);
+  const SinCos phi = sincos_turn(u2);  // phi = 2 pi u2
+  x = r * phi.cos;
+  y = r * phi.sin;
 }
 
 // Cosine-weighted direction on the upper hemisphere, pdf = cos(theta)/pi.
@@ -20,8 +22,9 @@ inline Vec3 sample_cosine_hemisphere(double u1, double u2) {
 
 // Uniform direction on the unit sphere, pdf = 1/(4 pi).
 inline Vec3 sample_uniform_sphere(double u1, double u2) {
-  const double z = 1 - 2 * u1, r = std::sqrt(std::fmax(0.0, 1 - z * z)), phi = 2 * kPi * u2;
-  return {r * std::cos(phi), r * std::sin(phi), z};
+  const double z = 1 - 2 * u1, r = std::sqrt(std::fmax(0.0, 1 - z * z));
+  const SinCos phi = sincos_turn(u2);  // phi = 2 pi u2
+  return {r * phi.cos, r * phi.sin, z};
 }
 
 }  // namespace mcref

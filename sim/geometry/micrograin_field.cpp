@@ -49,6 +49,7 @@ MicrograinField::MicrograinField(const MicrograinGeometry& g, std::uint64_t seed
   inv_rx_ = 1 / rx_;
   inv_ry_ = 1 / ry_;
   inv_c_ = 1 / c_;
+  spheres_ = rx_ == ry_ && ry_ == c_;
   side_ = g.tile * g.radius;
   side_x_ = side_ * inv_rx_;
   side_y_ = side_ * inv_ry_;
@@ -171,7 +172,8 @@ template <bool kDetail>
 Hit MicrograinField::make_hit(Hit::Kind kind, double t, Vec3 p, Vec3 unit_normal, std::uint32_t grain) const {
   if constexpr (kDetail) {
     const Vec3 up = wrap_unit(p);
-    const Vec3 normal = kind == Hit::Kind::Grain ? normal_from_unit(unit_normal) : unit_normal;
+    // Spherical grains: the unit normal (unit length up to rounding) is the real one.
+    const Vec3 normal = kind == Hit::Kind::Grain && !spheres_ ? normal_from_unit(unit_normal) : unit_normal;
     return {kind, t, from_unit(up), up, normal, unit_normal, grain};
   } else {
     Hit hit;
@@ -184,6 +186,7 @@ Hit MicrograinField::make_hit(Hit::Kind kind, double t, Vec3 p, Vec3 unit_normal
 template <bool kDetail>
 Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
   o = wrap_unit(o);
+  const double a = dot(d, d), inv_a = 1 / a;  // of the sphere roots below
   double travelled = 0;
   for (int wraps = 0; wraps < kMaxWraps; ++wraps) {
     if (d.z >= 0 && o.z >= 1) break;  // above every grain, going up: escape
@@ -211,8 +214,8 @@ Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
       // Exact root in double precision for the sphere Embree found.
       const Vec3 c = prim_centres_[rh.hit.primID];
       const Vec3 oc = o - c;
-      const double a = dot(d, d), b = dot(oc, d), cc = dot(oc, oc) - 1;
-      const double disc = b * b - a * cc, inv_a = 1 / a;
+      const double b = dot(oc, d), cc = dot(oc, oc) - 1;
+      const double disc = b * b - a * cc;
       if (disc < 0) {
         // A spurious hit: Embree grazes a sphere that the double-precision
         // root misses. Step past it by kSkip (unit space, ~1e-4 grain

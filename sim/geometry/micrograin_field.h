@@ -137,6 +137,7 @@ class MicrograinField {
 
   MicrograinGeometry geometry_;
   double rx_, ry_, c_, inv_rx_, inv_ry_, inv_c_;
+  bool spheres_;  // r_x = r_y = c: grains are spheres in real space too
   double side_, side_x_, side_y_;
   std::vector<Vec3> centres_;          // real grains, unit space
   std::vector<std::uint32_t> owner_;   // Embree primitive -> real grain index

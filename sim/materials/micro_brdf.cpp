@@ -44,9 +44,8 @@ Vec3 sample_ggx_vndf(double alpha, Vec3 wi, double u1, double u2) {
   const double lensq = vh.x * vh.x + vh.y * vh.y;
   const Vec3 t1 = lensq > 0 ? Vec3{-vh.y, vh.x, 0} / std::sqrt(lensq) : Vec3{1, 0, 0};
   const Vec3 t2 = cross(vh, t1);
-  const double r = std::sqrt(u1), phi = 2 * kPi * u2;
-  const double p1 = r * std::cos(phi);
-  double p2 = r * std::sin(phi);
+  double p1, p2;
+  sample_uniform_disc(u1, u2, p1, p2);
   const double s = 0.5 * (1 + vh.z);
   p2 = (1 - s) * std::sqrt(std::fmax(0.0, 1 - p1 * p1)) + s * p2;
   const Vec3 nh = t1 * p1 + t2 * p2 + vh * std::sqrt(std::fmax(0.0, 1 - p1 * p1 - p2 * p2));

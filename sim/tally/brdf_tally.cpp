@@ -21,28 +21,32 @@ std::size_t BrdfLayout::sums_size() const {
 }
 
 BrdfAccumulator::BrdfAccumulator(const BrdfLayout& layout, double phi_i, std::vector<double>& sums)
-    : layout_(layout), phi_i_(phi_i), sums_(sums) {}
+    : layout_(layout),
+      sums_(sums),
+      classes_(static_cast<int>(layout.order1_classes.size())),
+      H_(layout.hemispheres()),
+      T_(layout.theta_o_bins),
+      energy_(layout.binned_size()),
+      delta_energy_(energy_ + static_cast<std::size_t>(layout.components()) * H_ * 3),
+      unscattered_(energy_ + 2 * static_cast<std::size_t>(layout.components()) * H_ * 3),
+      phi_bins_(layout.phi_bins, phi_i, layout.folded) {}
 
 void BrdfAccumulator::add(Vec3 wo, int order, int order1_class, const Rgb& weight, bool delta) {
-  const int classes = static_cast<int>(layout_.order1_classes.size());
-  const int c = order <= 1 ? order1_class : classes + std::min(order, 4) - 2;
+  const int c = order <= 1 ? order1_class : classes_ + std::min(order, 4) - 2;
   const int h = wo.z >= 0 ? 0 : 1;
   if (h == 1 && !layout_.transmission) return;
-  const int H = layout_.hemispheres(), T = layout_.theta_o_bins, P = layout_.phi_bins;
   if (order == 0) {  // unscattered: a delta lobe in the total, in no component
-    const std::size_t unscattered = layout_.binned_size() + 2 * static_cast<std::size_t>(layout_.components()) * H * 3;
-    for (int k = 0; k < 3; ++k) sums_[unscattered + h * 3 + k] += weight[k];
+    for (int k = 0; k < 3; ++k) sums_[unscattered_ + h * 3 + k] += weight[k];
     return;
   }
-  const std::size_t ch = static_cast<std::size_t>(c * H + h) * 3;
-  const std::size_t energy = layout_.binned_size() + (delta ? layout_.components() * H * 3 : 0) + ch;
+  const std::size_t ch = static_cast<std::size_t>(c * H_ + h) * 3;
+  const std::size_t energy = (delta ? delta_energy_ : energy_) + ch;
   for (int k = 0; k < 3; ++k) sums_[energy + k] += weight[k];
   if (delta) return;
   const double mu = std::fabs(wo.z);
-  const int t = h == 0 ? std::min(T - 1, static_cast<int>((1 - mu) * T)) : std::min(T - 1, static_cast<int>(mu * T));
-  const double span = layout_.folded ? kPi : 2 * kPi;
-  const int p = std::min(P - 1, static_cast<int>(relative_azimuth(spherical_phi(wo), phi_i_, layout_.folded) / span * P));
-  const std::size_t bin = ((static_cast<std::size_t>(c * H + h) * T + t) * P + p) * 3;
+  const int t = std::min(T_ - 1, static_cast<int>((h == 0 ? 1 - mu : mu) * T_));
+  const int p = phi_bins_.bin(wo);
+  const std::size_t bin = ((static_cast<std::size_t>(c * H_ + h) * T_ + t) * layout_.phi_bins + p) * 3;
   for (int k = 0; k < 3; ++k) sums_[bin + k] += weight[k];
 }
 

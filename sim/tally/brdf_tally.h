@@ -17,6 +17,7 @@
 
 #include "sim/core/rgb.h"
 #include "sim/core/vec.h"
+#include "sim/tally/azimuth_bins.h"
 #include "sim/tally/table.h"
 
 namespace mcref {
@@ -51,8 +52,11 @@ class BrdfAccumulator {
 
  private:
   const BrdfLayout& layout_;
-  double phi_i_;
   std::vector<double>& sums_;
+  // Layout constants, computed once.
+  int classes_, H_, T_;
+  std::size_t energy_, delta_energy_, unscattered_;
+  AzimuthBins phi_bins_;
 };
 
 // Tables of a brdf measure: for each hemisphere ("" = reflection, "_btdf"):
