@@ -1,4 +1,5 @@
-// Benchmarks of micrograin transport (issue #3), printed as a table:
+// Benchmarks of micrograin transport (issue #3), printed as a table.
+// Usage: bench_micrograin_transport [all|samplers|walk] [threads (walk; default 2)]
 // 1. ns/sample of the NDF sampler (unit space, LRPB23 Eq. 20) and of the vNDF
 //    sampler (vNDF paper Listings 1–4, models/micrograin/vndf_sampler.h) at
 //    theta_i = 20, 40, 60, 80 deg, 10^7 samples each, one thread, and the
@@ -19,8 +20,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "models/micrograin/ndf_sampling.h"
 #include "models/micrograin/vndf_sampler.h"
