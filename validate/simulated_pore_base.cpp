@@ -115,10 +115,15 @@ std::vector<double> simulated_pore_base(const Table& t, const Experiment& ex, co
   }
   static std::mutex mutex;
   static std::map<std::string, std::vector<double>> cache;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    const auto it = cache.find(key.str());
+    if (it != cache.end()) return it->second;
+  }
+  std::vector<double> v = evaluate(t, ex, base);  // not under the lock: it runs TBB tasks
   std::lock_guard<std::mutex> lock(mutex);
-  const auto it = cache.find(key.str());
-  if (it != cache.end()) return it->second;
-  return cache[key.str()] = evaluate(t, ex, base);
+  cache.emplace(key.str(), v);
+  return v;
 }
 
 }  // namespace mcref

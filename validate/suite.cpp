@@ -169,7 +169,9 @@ std::vector<ErrorBudget> error_budgets(const TableFile& f, const std::vector<Che
   std::vector<ErrorBudget> out;
   for (const CheckResult& r : checks) {
     const Table* t = f.find(r.table);
-    if (!t || r.quantity != "albedo" || t->axes.size() != 4 || t->attributes.count("components") == 0) continue;
+    const bool delta_table = r.table.size() >= 6 && r.table.compare(r.table.size() - 6, 6, "_delta") == 0;
+    if (!t || r.quantity != "albedo" || delta_table || t->axes.size() != 4 || t->attributes.count("components") == 0)
+      continue;
     std::vector<std::string> names;
     std::stringstream ss(t->attributes.at("components"));
     for (std::string n; std::getline(ss, n, ',');) names.push_back(n);
