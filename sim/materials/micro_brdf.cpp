@@ -6,6 +6,7 @@
 #include "models/micrograin/fresnel.h"
 #include "sim/core/frame.h"
 #include "sim/core/warp.h"
+#include "sim/materials/ggx.h"
 
 namespace mcref {
 
@@ -24,33 +25,9 @@ std::string MicroBrdf::name() const {
 
 namespace {
 
-Rgb conductor_fresnel(const MicroBrdf& b, double c) {
-  return {mg::fresnel_conductor(c, b.eta.r, b.kappa.r), mg::fresnel_conductor(c, b.eta.g, b.kappa.g),
-          mg::fresnel_conductor(c, b.eta.b, b.kappa.b)};
-}
+Rgb conductor_fresnel(const MicroBrdf& b, double c) { return fresnel_conductor(c, b.eta, b.kappa); }
 
 Vec3 mirror(Vec3 w, Vec3 n) { return n * (2 * dot(w, n)) - w; }
-
-double ggx_lambda_local(double alpha, Vec3 w) {
-  const double s2 = std::fmax(0.0, 1 - w.z * w.z);
-  if (s2 == 0) return 0;
-  const double t2 = s2 / (w.z * w.z);
-  return 0.5 * (-1 + std::sqrt(1 + alpha * alpha * t2));
-}
-
-// Heitz 2018, "Sampling the GGX distribution of visible normals" (isotropic alpha).
-Vec3 sample_ggx_vndf(double alpha, Vec3 wi, double u1, double u2) {
-  const Vec3 vh = normalize(Vec3{alpha * wi.x, alpha * wi.y, wi.z});
-  const double lensq = vh.x * vh.x + vh.y * vh.y;
-  const Vec3 t1 = lensq > 0 ? Vec3{-vh.y, vh.x, 0} / std::sqrt(lensq) : Vec3{1, 0, 0};
-  const Vec3 t2 = cross(vh, t1);
-  double p1, p2;
-  sample_uniform_disc(u1, u2, p1, p2);
-  const double s = 0.5 * (1 + vh.z);
-  p2 = (1 - s) * std::sqrt(std::fmax(0.0, 1 - p1 * p1)) + s * p2;
-  const Vec3 nh = t1 * p1 + t2 * p2 + vh * std::sqrt(std::fmax(0.0, 1 - p1 * p1 - p2 * p2));
-  return normalize(Vec3{alpha * nh.x, alpha * nh.y, std::fmax(1e-12, nh.z)});
-}
 
 // The Lambertian body under a smooth dielectric: the light refracted into the
 // body bounces (albedo K_d, cosine-distributed) between body and interface
@@ -103,13 +80,13 @@ MicroBrdfSample sample_micro_brdf(const MicroBrdf& b, Vec3 wi, Vec3 n, Rng& rng)
     case MicroBrdf::Type::RoughConductor: {
       const Frame fr(n);
       const Vec3 wl = fr.to_local(wi);
-      const Vec3 m = sample_ggx_vndf(b.alpha, wl, rng.uniform(), rng.uniform());
+      const Vec3 m = sample_ggx_visible_normal(b.alpha, wl, rng.uniform(), rng.uniform());
       const Vec3 ol = mirror(wl, m);
       if (ol.z <= 0) {
         s.absorbed = true;
         return s;
       }
-      const double li = ggx_lambda_local(b.alpha, wl), lo = ggx_lambda_local(b.alpha, ol);
+      const double li = ggx_lambda(b.alpha, wl), lo = ggx_lambda(b.alpha, ol);
       s.wo = fr.to_world(ol);
       s.weight = conductor_fresnel(b, dot(wl, m)) * ((1 + li) / (1 + li + lo));
       return s;

@@ -17,10 +17,6 @@ struct SubstrateSample {
   bool valid = false;
 };
 
-// Unpolarised Fresnel reflectance of a conductor eta + i k at incidence cosine c.
-double fresnel_conductor(double cos_theta, double eta, double k);
-Rgb fresnel_conductor(double cos_theta, const Rgb& eta, const Rgb& k);
-
 // wi points up (toward where the light came from), wi.z > 0.
 SubstrateSample sample_substrate(const SlabSubstrate& s, Vec3 wi, Rng& rng);
 // f(wi, wo) without the cosine (0 for the smooth conductor: a delta lobe).
