@@ -47,7 +47,7 @@ std::vector<ModelInfo> geometry_model_list() {
       {"vndf_eq13", "vndf", true, "visible NDF with height-correlated masking (vNDF paper Eq. 6/11-13)"},
       {"vndf_sampler", "vndf", false,
        "histogram of the vNDF sampler (vNDF paper Sec. 4, Listings 1-4; theta by the tabulated sigma^-1, phi by "
-       "Newton inversion of Eq. 22), 2e6 samples per incident direction, binned and folded as the simulation: the "
+       "the triangle cut of the tent of Eq. 28-31), 2e6 samples per incident direction, binned and folded as the simulation: the "
        "paper's Fig. 5 check (approximate: 1024 x 1024 table; carries its own Monte Carlo noise)"},
   };
   for (ModelInfo& m : models) m.kind = "micrograin";

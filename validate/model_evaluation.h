@@ -17,7 +17,7 @@ struct ModelInfo {
   std::string quantity;     // table quantity it predicts
   bool exact;               // exact for the simulated geometry (disagreement = a bug)
   std::string description;  // what it is, with equation numbers
-  std::string kind;         // geometry kind it applies to ("micrograin", "slab", "spheres")
+  std::string kind = "";    // geometry kind it applies to ("micrograin", "slab", "spheres")
   // Optional: which table component it predicts (e.g. "order1_grain"); empty = any.
   std::string component = "";
 };

@@ -262,12 +262,13 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
     std::vector<Check> checks = c.checks;
     if (checks.empty())
       for (const Table& t : f.tables)
-        for (const ModelInfo& m : models_for(t.quantity, ex.kind))
+        for (const ModelInfo& m : models_for(t.quantity, ex.kind)) {
           if (!m.component.empty() && (t.attributes.count("component") == 0 || t.attributes.at("component") != m.component))
             continue;
-          else if (!(ex.kind == "micrograin" && ex.micrograin.anisotropic() &&
+          if (!(ex.kind == "micrograin" && ex.micrograin.anisotropic() &&
                 (m.name == "ndf_ggx_alpha_tilde" || m.name == "g1_smith_series_n4" || m.name == "g1_smith_ggx_alpha_tilde")))
             checks.push_back({t.name, m.name, 0.0});
+        }
     for (const Check& chk : checks) {
       const Table* t = f.find(chk.table);
       if (!t) throw std::runtime_error("table " + chk.table + " missing from " + cr.table_file);

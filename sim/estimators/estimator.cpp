@@ -10,8 +10,9 @@ namespace mcref {
 Sums run_chunks(std::uint64_t samples, std::size_t sums_size, std::uint64_t key,
                 const std::function<void(Rng&, std::uint64_t, Sums&)>& body) {
   const std::uint64_t chunks = (samples + kChunkSamples - 1) / kChunkSamples;
-  std::vector<Sums> partial(chunks, Sums(sums_size, 0.0));
+  std::vector<Sums> partial(chunks);
   tbb::parallel_for(std::uint64_t(0), chunks, [&](std::uint64_t c) {
+    partial[c].assign(sums_size, 0.0);  // allocated and zeroed by the worker: in its cache
     Rng rng(stream_seed({key, c}));
     const std::uint64_t begin = c * kChunkSamples;
     const std::uint64_t count = std::min(kChunkSamples, samples - begin);

@@ -22,19 +22,32 @@ constexpr float kSkip = 1e-4f;
 // ~1e-7 of the tile size. A context filter rejects such self-hits inside
 // Embree's traversal (a convex grain is not met again by a ray leaving it).
 struct LeavingContext : RTCIntersectContext {
-  const Vec3* prim_centres;
-  const std::uint32_t* owner;
+  const GrainCopy* prims;
   const LoggedRay* ray;
 };
 
 void reject_self_hit(const RTCFilterFunctionNArguments* args) {
   const auto* c = static_cast<const LeavingContext*>(args->context);
   const std::uint32_t prim = RTCHitN_primID(args->hit, args->N, 0);
-  if (c->owner[prim] != c->ray->leaving) return;
-  const Vec3 oc = c->ray->origin - c->prim_centres[prim];  // the copy the origin lies on, not a ghost
+  if (c->prims[prim].owner != c->ray->leaving) return;
+  const Vec3 oc = c->ray->origin - c->prims[prim].centre;  // the copy the origin lies on, not a ghost
   if (std::fabs(dot(oc, oc) - 1) < 1e-6) args->valid[0] = 0;
 }
 }  // namespace
+
+// One straight piece of a trace inside the tile, up to a side, the base or
+// the top of the grain layer, and the rtcIntersect1 call it needs.
+struct TraceSegment {
+  LoggedRay ray;      // the call (unless `escape`)
+  Vec3 o, d;          // unit-space origin (in the tile) and direction
+  double a, inv_a;    // d . d and its inverse (sphere roots)
+  double tx, ty, tz;  // to the x side, the y side, and the base (d.z < 0) or top (d.z > 0) ahead
+  double t_far;       // the nearest of them
+  bool up;            // d.z > 0
+  double travelled;   // t before this segment (earlier segments, across wraps)
+  int wraps;          // sides crossed before this segment
+  bool escape;        // above every grain and going up: no call needed
+};
 
 double MicrograinGeometry::c() const { return radius * std::sqrt(beta_x * beta_y); }
 double MicrograinGeometry::r_x() const { return c() / beta_x; }
@@ -97,8 +110,7 @@ void MicrograinField::build_scene() {
       for (int sy = -1; sy <= 1; ++sy) {
         const Vec3 p{centres_[k].x + sx * side_x_, centres_[k].y + sy * side_y_, 0.0};
         if (p.x > -1 && p.x < side_x_ + 1 && p.y > -1 && p.y < side_y_ + 1) {
-          prim_centres_.push_back(p);
-          owner_.push_back(static_cast<std::uint32_t>(k));
+          prims_.push_back({p, static_cast<std::uint32_t>(k)});
         }
       }
   }
@@ -107,13 +119,13 @@ void MicrograinField::build_scene() {
   scene_ = rtcNewScene(device_);
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-  if (!prim_centres_.empty()) {
+  if (!prims_.empty()) {
     RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
-                                                          4 * sizeof(float), prim_centres_.size()));
-    for (std::size_t i = 0; i < prim_centres_.size(); ++i) {
-      v[4 * i + 0] = static_cast<float>(prim_centres_[i].x);
-      v[4 * i + 1] = static_cast<float>(prim_centres_[i].y);
+                                                          4 * sizeof(float), prims_.size()));
+    for (std::size_t i = 0; i < prims_.size(); ++i) {
+      v[4 * i + 0] = static_cast<float>(prims_[i].centre.x);
+      v[4 * i + 1] = static_cast<float>(prims_[i].centre.y);
       v[4 * i + 2] = 0.0f;
       v[4 * i + 3] = 1.0f;
     }
@@ -159,8 +171,7 @@ void MicrograinField::embree_intersect(const LoggedRay& r, RTCRayHit& rh) const 
   rtcInitIntersectContext(&context);
   if (r.leaving != kNoGrain) {
     context.filter = reject_self_hit;
-    context.prim_centres = prim_centres_.data();
-    context.owner = owner_.data();
+    context.prims = prims_.data();
     context.ray = &r;
   }
   rtcIntersect1(scene_, &context, &rh);
@@ -169,11 +180,11 @@ void MicrograinField::embree_intersect(const LoggedRay& r, RTCRayHit& rh) const 
 // kDetail = false fills only the kind and t of the hit: no normals, no position.
 // Every field is given at once: zero-filling the large Hit first costs time.
 template <bool kDetail>
-Hit MicrograinField::make_hit(Hit::Kind kind, double t, Vec3 p, Vec3 unit_normal, std::uint32_t grain) const {
+[[gnu::always_inline]] inline Hit MicrograinField::make_hit(Hit::Kind kind, double t, Vec3 p, Vec3 unit_normal, std::uint32_t grain) const {
   if constexpr (kDetail) {
     const Vec3 up = wrap_unit(p);
     // Spherical grains: the unit normal (unit length up to rounding) is the real one.
-    const Vec3 normal = kind == Hit::Kind::Grain && !spheres_ ? normal_from_unit(unit_normal) : unit_normal;
+    const Vec3 normal = !spheres_ && kind == Hit::Kind::Grain ? normal_from_unit(unit_normal) : unit_normal;
     return {kind, t, from_unit(up), up, normal, unit_normal, grain};
   } else {
     Hit hit;
@@ -183,70 +194,106 @@ Hit MicrograinField::make_hit(Hit::Kind kind, double t, Vec3 p, Vec3 unit_normal
   }
 }
 
+TraceSegment MicrograinField::segment(Vec3 o, Vec3 d, double a, double inv_a, std::uint32_t start_grain,
+                                      int wraps, double travelled) const {
+  TraceSegment s;
+  s.o = o;
+  s.d = d;
+  s.a = a;
+  s.inv_a = inv_a;
+  s.wraps = wraps;
+  s.travelled = travelled;
+  s.escape = d.z >= 0 && o.z >= 1;  // above every grain, going up: no ray needed
+  if (s.escape) return s;
+  // Distances to the side, base or top ahead. The plane ahead is picked by
+  // copysign, not by branches on the signs of d (random: mispredicted half
+  // of the time): h + copysign(h, d) is exactly 2h or 0.
+  auto ahead = [](double half, double d) { return half + std::copysign(half, d); };
+  s.tx = d.x != 0 ? (ahead(0.5 * side_x_, d.x) - o.x) / d.x : kInf;
+  s.ty = d.y != 0 ? (ahead(0.5 * side_y_, d.y) - o.y) / d.y : kInf;
+  s.tz = d.z != 0 ? (ahead(0.5, d.z) - o.z) / d.z : kInf;
+  s.up = d.z > 0;
+  s.t_far = std::min(std::min(s.tx, s.ty), s.tz);
+  // Self-hits only on the first segment: after a wrap the ray may meet
+  // its start grain again through the periodic tile.
+  s.ray = {{static_cast<float>(o.x), static_cast<float>(o.y), static_cast<float>(o.z)},
+           {static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z)},
+           0.0f,
+           static_cast<float>(s.t_far) * (1.0f + 1e-6f),
+           o,
+           wraps == 0 ? start_grain : kNoGrain};
+  if (t_ray_log) t_ray_log->push_back(s.ray);
+  return s;
+}
+
 template <bool kDetail>
 Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
-  o = wrap_unit(o);
-  const double a = dot(d, d), inv_a = 1 / a;  // of the sphere roots below
-  double travelled = 0;
-  for (int wraps = 0; wraps < kMaxWraps; ++wraps) {
-    if (d.z >= 0 && o.z >= 1) break;  // above every grain, going up: escape
-    const double tx = d.x > 0 ? (side_x_ - o.x) / d.x : (d.x < 0 ? -o.x / d.x : kInf);
-    const double ty = d.y > 0 ? (side_y_ - o.y) / d.y : (d.y < 0 ? -o.y / d.y : kInf);
-    const double t_side = std::min(tx, ty);
-    const double t_base = d.z < 0 ? -o.z / d.z : kInf;
-    const double t_top = d.z > 0 ? (1 - o.z) / d.z : kInf;
-    const double t_far = std::min(t_side, std::min(t_base, t_top));
+  const double a = dot(d, d);  // of the sphere roots
+  const TraceSegment s = segment(wrap_unit(o), d, a, 1 / a, start_grain, 0, 0.0);
+  RTCRayHit rh;
+  if (!s.escape) embree_intersect(s.ray, rh);
+  return finish<kDetail>(s, rh);
+}
 
-    float t_near = 0.0f;
-    for (;;) {
-      // Self-hits only on the first segment: after a wrap the ray may meet
-      // its start grain again through the periodic tile.
-      const LoggedRay r{{static_cast<float>(o.x), static_cast<float>(o.y), static_cast<float>(o.z)},
-                        {static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z)},
-                        t_near,
-                        static_cast<float>(t_far) * (1.0f + 1e-6f),
-                        o,
-                        wraps == 0 ? start_grain : kNoGrain};
-      if (t_ray_log) t_ray_log->push_back(r);
-      RTCRayHit rh;
-      embree_intersect(r, rh);
-      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+template <bool kDetail>
+Hit MicrograinField::finish(const TraceSegment& first, const RTCRayHit& first_rh) const {
+  // Usually the first answer decides; later segments (after a spurious hit
+  // or across a side) live in `next`, so the common case copies nothing.
+  const TraceSegment* s = &first;
+  const RTCRayHit* rh = &first_rh;
+  TraceSegment next;
+  RTCRayHit next_rh;
+  while (!s->escape) {
+    if (rh->hit.geomID != RTC_INVALID_GEOMETRY_ID) {
       // Exact root in double precision for the sphere Embree found.
-      const Vec3 c = prim_centres_[rh.hit.primID];
-      const Vec3 oc = o - c;
-      const double b = dot(oc, d), cc = dot(oc, oc) - 1;
-      const double disc = b * b - a * cc;
-      if (disc < 0) {
+      const GrainCopy& prim = prims_[rh->hit.primID];
+      const Vec3 c = prim.centre;
+      const Vec3 oc = s->o - c;
+      const double b = dot(oc, s->d), cc = dot(oc, oc) - 1;
+      const double disc = b * b - s->a * cc;
+      const double sq = disc < 0 ? 0 : std::sqrt(disc);
+      const double t0 = (-b - sq) * s->inv_a, t1 = (-b + sq) * s->inv_a;
+      if (disc < 0 || t1 <= 0) {
         // A spurious hit: Embree grazes a sphere that the double-precision
-        // root misses. Step past it by kSkip (unit space, ~1e-4 grain
-        // radius): an ulp-sized step could crawl for ages.
-        t_near = rh.ray.tfar + kSkip;
+        // root misses, or one behind the origin (a float artefact). Step
+        // past it by kSkip (unit space, ~1e-4 grain radius): an ulp-sized
+        // step could crawl for ages.
+        const float t_near = rh->ray.tfar + kSkip;
+        if (s != &next) next = *s;
+        next.ray.tnear = t_near;
+        if (t_ray_log) t_ray_log->push_back(next.ray);
+        embree_intersect(next.ray, next_rh);
+        s = &next;
+        rh = &next_rh;
         continue;
       }
-      const double sq = std::sqrt(disc);
-      const double t0 = (-b - sq) * inv_a, t1 = (-b + sq) * inv_a;
-      if (t1 <= 0) {  // the sphere lies behind the origin: a float artefact
-        t_near = rh.ray.tfar + kSkip;
-        continue;
+      const double tf = rh->ray.tfar;
+      const double t = (t0 >= 0 && std::fabs(t0 - tf) <= std::fabs(t1 - tf)) ? t0 : t1;
+      // A root beyond the base plane is on the lower half: the ray meets the
+      // base first. (t < tz is tested first: nearly always true, so well
+      // predicted, unlike the random `up`.)
+      if (t < s->tz || s->up) {
+        const Vec3 p = s->o + s->d * t;
+        // The unit normal is p - c, unit length up to rounding: p is on the unit sphere.
+        return make_hit<kDetail>(Hit::Kind::Grain, s->travelled + t, p, p - c, prim.owner);
       }
-      const double t = (t0 >= 0 && std::fabs(t0 - rh.ray.tfar) <= std::fabs(t1 - rh.ray.tfar)) ? t0 : t1;
-      if (t >= t_base) break;  // meets the base plane first (a lower-half hit)
-      const Vec3 p = o + d * t;
-      // The unit normal is p - c, unit length up to rounding: p is on the unit sphere.
-      return make_hit<kDetail>(Hit::Kind::Grain, travelled + t, p, p - c, owner_[rh.hit.primID]);
     }
-    if (t_far == t_base) {
-      Vec3 p = o + d * t_base;
+    if (s->t_far == s->tz && !s->up) {
+      Vec3 p = s->o + s->d * s->tz;
       p.z = 0;
-      return make_hit<kDetail>(Hit::Kind::Base, travelled + t_base, p, {0, 0, 1}, 0);
+      return make_hit<kDetail>(Hit::Kind::Base, s->travelled + s->tz, p, {0, 0, 1}, 0);
     }
-    if (t_far == t_top) break;
+    if (s->t_far == s->tz || s->wraps + 1 >= kMaxWraps) break;  // the top: escape
     // Leave the tile through a side and re-enter from the opposite one.
-    o = o + d * t_side;
-    travelled += t_side;
+    const double t_side = std::min(s->tx, s->ty);
+    Vec3 o = s->o + s->d * t_side;
     // (No wrap_unit here: it would map side_x back to 0 and stall the ray.)
-    if (tx <= ty) o.x = d.x > 0 ? 0 : side_x_;
-    if (ty <= tx) o.y = d.y > 0 ? 0 : side_y_;
+    if (s->tx <= s->ty) o.x = s->d.x > 0 ? 0 : side_x_;
+    if (s->ty <= s->tx) o.y = s->d.y > 0 ? 0 : side_y_;
+    next = segment(o, s->d, s->a, s->inv_a, kNoGrain, s->wraps + 1, s->travelled + t_side);
+    if (!next.escape) embree_intersect(next.ray, next_rh);
+    s = &next;
+    rh = &next_rh;
   }
   return Hit{};  // escape
 }

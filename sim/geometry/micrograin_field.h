@@ -57,6 +57,16 @@ struct Hit {
   std::uint32_t grain = 0;  // index of the grain (real, not a ghost copy)
 };
 
+// An Embree primitive: a grain, or a ghost copy of it across a side of the
+// tile; its exact unit-space centre and the index of the real grain, in one
+// cache line (both are read after every hit).
+struct alignas(32) GrainCopy {
+  Vec3 centre;
+  std::uint32_t owner;
+};
+
+struct TraceSegment;  // one straight piece of a trace (micrograin_field.cpp)
+
 class MicrograinField {
  public:
   // Builds one realization of the field from its own seed.
@@ -134,14 +144,20 @@ class MicrograinField {
   Hit make_hit(Hit::Kind kind, double t, Vec3 unit_position, Vec3 unit_normal, std::uint32_t grain) const;
   template <bool kDetail>
   Hit trace(Vec3 unit_origin, Vec3 unit_direction, std::uint32_t start_grain) const;
+  // The segment from o along d (a = d . d) after `wraps` sides and `travelled`.
+  TraceSegment segment(Vec3 o, Vec3 d, double a, double inv_a, std::uint32_t start_grain, int wraps,
+                       double travelled) const;
+  // The hit of a trace from its first segment and Embree's answer for it
+  // (calls Embree again after a spurious hit and across the tile's sides).
+  template <bool kDetail>
+  Hit finish(const TraceSegment& s, const RTCRayHit& rh) const;
 
   MicrograinGeometry geometry_;
   double rx_, ry_, c_, inv_rx_, inv_ry_, inv_c_;
   bool spheres_;  // r_x = r_y = c: grains are spheres in real space too
   double side_, side_x_, side_y_;
   std::vector<Vec3> centres_;          // real grains, unit space
-  std::vector<std::uint32_t> owner_;   // Embree primitive -> real grain index
-  std::vector<Vec3> prim_centres_;     // Embree primitive centres (with ghost copies)
+  std::vector<GrainCopy> prims_;  // Embree primitive -> its grain copy
   // Uniform grid over the unit tile for neighbour queries.
   int grid_nx_ = 1, grid_ny_ = 1;
   double cell_x_ = 1, cell_y_ = 1;
