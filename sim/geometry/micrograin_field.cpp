@@ -179,8 +179,10 @@ void MicrograinField::embree_intersect(const LoggedRay& r, RTCRayHit& rh) const 
 
 // kDetail = false fills only the kind and t of the hit: no normals, no position.
 // Every field is given at once: zero-filling the large Hit first costs time.
+// Always inlined into the trace: the call and the copy of the Hit cost time.
 template <bool kDetail>
-[[gnu::always_inline]] inline Hit MicrograinField::make_hit(Hit::Kind kind, double t, Vec3 p, Vec3 unit_normal, std::uint32_t grain) const {
+[[gnu::always_inline]] inline Hit MicrograinField::make_hit(Hit::Kind kind, double t, Vec3 p, Vec3 unit_normal,
+                                                           std::uint32_t grain) const {
   if constexpr (kDetail) {
     const Vec3 up = wrap_unit(p);
     // Spherical grains: the unit normal (unit length up to rounding) is the real one.
