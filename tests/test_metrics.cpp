@@ -3,9 +3,44 @@
 
 #include <cmath>
 
+#include "sim/core/rng.h"
+#include "sim/core/vec.h"
 #include "validate/metrics.h"
 
 using namespace mcref;
+
+// A model that is itself a Monte Carlo estimate (standard error 2x the
+// simulation's): ignoring its noise inflates chi2/dof to ~5 and fails an exact
+// check; adding it in quadrature gives chi2 ~ chi2(4000). Seed 11, 4000 cells,
+// normal noise (batches 10^7: the t map is the identity), alpha = 1e-3.
+TEST(Metrics, ModelNoiseEntersInQuadrature) {
+  Rng rng(11);
+  auto normal = [&] { return std::sqrt(-2 * std::log1p(-rng.uniform())) * std::cos(2 * kPi * rng.uniform()); };
+  const std::size_t n = 4000;
+  std::vector<double> sim(n), se(n, 0.01), model(n), model_se(n, 0.02);
+  for (std::size_t i = 0; i < n; ++i) {
+    sim[i] = 1 + se[i] * normal();
+    model[i] = 1 + model_se[i] * normal();
+  }
+  const Comparison without = compare(sim, se, model, 10000000);
+  EXPECT_GT(without.chi2_per_dof(), 4.0);
+  EXPECT_EQ(judge(without, true, 1e-3, 0).status, "FAIL");
+  const Comparison with = compare(sim, se, model, 10000000, model_se);
+  EXPECT_EQ(with.cells, n);
+  EXPECT_EQ(judge(with, true, 1e-3, 0).status, "pass") << with.chi2_per_dof() << " " << with.max_abs_z;
+}
+
+// Welch-Satterthwaite: se = mse = 0.1 with 5 batches gives 16 degrees of
+// freedom for t = 1/sqrt(0.02); a zero-variance cell with model noise is
+// compared by (sim - model)/mse, normal.
+TEST(Metrics, ModelNoiseDegreesOfFreedom) {
+  const Comparison a = compare({1.0}, {0.1}, {0.0}, 5, {0.1});
+  const Comparison b = compare({1.0}, {std::sqrt(0.02)}, {0.0}, 17);  // t with 16 dof, no model noise
+  EXPECT_NEAR(a.z[0], b.z[0], 1e-12);
+  const Comparison c = compare({1.0}, {0.0}, {0.7}, 5, {0.1});
+  EXPECT_EQ(c.cells, 1u);
+  EXPECT_NEAR(c.z[0], 3.0, 1e-12);
+}
 
 TEST(Metrics, ExactModelWithinErrorPasses) {
   const std::vector<double> sim{1.0, 2.0, 3.0}, se{0.1, 0.1, 0.1}, model{1.05, 1.95, 3.0};

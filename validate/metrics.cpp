@@ -8,7 +8,7 @@
 namespace mcref {
 
 Comparison compare(const std::vector<double>& sim, const std::vector<double>& se, const std::vector<double>& model,
-                   long long batches) {
+                   long long batches, const std::vector<double>& model_se) {
   Comparison c;
   c.z.assign(sim.size(), NAN);
   const double nu = static_cast<double>(batches - 1);
@@ -18,7 +18,8 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
       if (std::isfinite(sim[i]) && !std::isfinite(model[i])) ++c.model_undefined;
       continue;
     }
-    if (se[i] <= 0) {
+    const double mse = model_se.empty() || !std::isfinite(model_se[i]) ? 0.0 : model_se[i];
+    if (se[i] <= 0 && mse <= 0) {
       // Every batch gave the same value (all paths scattered, every sample
       // visible, or a bin that stayed empty): there is no error bar. Equal to
       // 1e-6 counts as agreement; a gross difference (> 1 %) of a non-empty
@@ -30,12 +31,19 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
       continue;
     }
 
-    const double t = (sim[i] - model[i]) / se[i];
-    // Probability-preserving map from t(nu) to N(0, 1), done on the tail
-    // P(T > |t|) = I_{nu/(nu+t^2)}(nu/2, 1/2) / 2 to keep precision.
-    const double tail = 0.5 * regularized_beta(nu / (nu + t * t), nu / 2, 0.5);
-    double z = std::copysign(-normal_quantile(tail), t);
-    if (!std::isfinite(z)) z = t;  // beyond double range: keep t (the verdict is FAIL anyway)
+    // A model with Monte Carlo noise of its own (many samples: normal) adds
+    // it in quadrature; the degrees of freedom follow Welch-Satterthwaite.
+    const double var = se[i] * se[i] + mse * mse;
+    const double t = (sim[i] - model[i]) / std::sqrt(var);
+    const double nu_eff = se[i] > 0 ? nu * (var / (se[i] * se[i])) * (var / (se[i] * se[i])) : INFINITY;
+    double z = t;
+    if (nu_eff < 1e7) {
+      // Probability-preserving map from t(nu) to N(0, 1), done on the tail
+      // P(T > |t|) = I_{nu/(nu+t^2)}(nu/2, 1/2) / 2 to keep precision.
+      const double tail = 0.5 * regularized_beta(nu_eff / (nu_eff + t * t), nu_eff / 2, 0.5);
+      z = std::copysign(-normal_quantile(tail), t);
+      if (!std::isfinite(z)) z = t;  // beyond double range: keep t (the verdict is FAIL anyway)
+    }
     c.z[i] = z;
     ++c.cells;
     c.chi2 += z * z;

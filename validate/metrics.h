@@ -26,9 +26,12 @@ struct Comparison {
 // Per-cell z: the t statistic (sim - model)/stderr with `batches - 1`
 // degrees of freedom (the stderr comes from the batch-to-batch spread),
 // mapped to the standard normal quantile of the same probability, so that
-// chi2 and the |z| bound are exact for any batch count.
+// chi2 and the |z| bound are exact for any batch count. `model_se` (optional,
+// per cell): the standard error of a model that is itself a Monte Carlo
+// estimate; it is added in quadrature, with Welch-Satterthwaite degrees of
+// freedom (the model's own count taken as infinite).
 Comparison compare(const std::vector<double>& sim, const std::vector<double>& stderr_,
-                   const std::vector<double>& model, long long batches);
+                   const std::vector<double>& model, long long batches, const std::vector<double>& model_se = {});
 
 struct Verdict {
   std::string status;  // "pass", "FAIL", or "measured" (approximate model, no tolerance)

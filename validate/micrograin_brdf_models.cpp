@@ -91,13 +91,15 @@ std::vector<ModelInfo> model_list() {
        "micrograin", ""},
       {"gdist_base_simvp", "brdf", false,
        "(1 - tau0) V_p(i, o) f_B (vNDF Eq. 1) with the bidirectional pore visibility V_p measured on an explicit field "
-       "(no closed form): exact for a single event on the base, up to its own Monte Carlo noise (~1 %)",
+       "(no closed form): exact for a single event on the base, up to its own Monte Carlo noise (~1 %), which "
+       "enters z",
        "micrograin", "order1_base"},
-      {"gdist_total_simvp", "brdf", false, "tau0 f_S with G_dist + (1 - tau0) V_p(i, o) f_B with V_p measured (vNDF Eq. 1)",
+      {"gdist_total_simvp", "brdf", false,
+       "tau0 f_S with G_dist + (1 - tau0) V_p(i, o) f_B with V_p measured (vNDF Eq. 1; its noise enters z)",
        "micrograin", "total"},
       {"gdist_albedo_simvp", "albedo", false,
-       "directional albedo of vNDF Eq. 1 with G_dist and V_p(i, o) measured; grain and base parts in the order-1 "
-       "components",
+       "directional albedo of vNDF Eq. 1 with G_dist and V_p(i, o) measured (its noise enters z); grain and base "
+       "parts in the order-1 components",
        "micrograin", ""},
   };
   return m;
@@ -210,12 +212,16 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
 
 // The Gdist form with the measured V_p: the grain part as gdist_*, the base
 // part from simulated_pore_base.
-std::vector<double> evaluate_simulated_vp(const Spec& s, const Table& t, const Experiment& ex, const mg::GrainField& f) {
+const PoreBase& measured_pore_base(const Table& t, const Experiment& ex) {
   const MicrograinMaterials& mat = ex.materials;
   const BaseReflection base{
       [&](int ch, Vec3 i, Vec3 o) { return mg::flat_brdf(channel_of(mat.base, ch), i, o); },
       [&](int ch, Vec3 i) { return mg::flat_delta_energy(channel_of(mat.base, ch), i.z); }};
-  std::vector<double> out = simulated_pore_base(t, ex, base);
+  return simulated_pore_base(t, ex, base);
+}
+
+std::vector<double> evaluate_simulated_vp(const Spec& s, const Table& t, const Experiment& ex, const mg::GrainField& f) {
+  std::vector<double> out = measured_pore_base(t, ex).values;
   if (s.part == Spec::Part::Base) return out;
   const Spec grain{Spec::Part::Grain, Spec::Form::Gdist};
   if (t.quantity == "brdf") {
@@ -252,10 +258,24 @@ std::vector<double> evaluate(const std::string& model, const Table& t, const Exp
   throw std::invalid_argument("model " + model + " does not predict " + t.quantity);
 }
 
+// The measured-V_p models carry the noise of that measurement (the grain
+// part is analytic): its standard errors, 0 on order1_grain albedo cells.
+std::vector<double> evaluate_stderr(const std::string& model, const Table& t, const Experiment& ex,
+                                    const std::vector<double>&) {
+  const auto it = specs().find(model);
+  if (it == specs().end() || !it->second.simulated_vp || !ex.materials.configured) return {};
+  std::vector<double> se = measured_pore_base(t, ex).stderrs;
+  if (t.quantity == "albedo" && it->second.part != Spec::Part::Base)
+    for (std::size_t a = 0; a < t.axes[0].size(); ++a)
+      for (std::size_t b = 0; b < t.axes[1].size(); ++b)
+        for (std::size_t k = 0; k < 3; ++k) se[t.index({a, b, 0, k})] = 0;  // order1_grain
+  return se;
+}
+
 }  // namespace
 
 const ModelFamily& micrograin_brdf_models() {
-  static const ModelFamily family{model_list(), evaluate};
+  static const ModelFamily family{model_list(), evaluate, evaluate_stderr};
   return family;
 }
 

@@ -48,7 +48,7 @@ std::vector<ModelInfo> geometry_model_list() {
       {"vndf_sampler", "vndf", false,
        "histogram of the vNDF sampler (vNDF paper Sec. 4, Listings 1-4; theta by the tabulated sigma^-1, phi by "
        "the triangle cut of the tent of Eq. 28-31), 2e6 samples per incident direction, binned and folded as the simulation: the "
-       "paper's Fig. 5 check (approximate: 1024 x 1024 table; carries its own Monte Carlo noise)"},
+       "paper's Fig. 5 check (approximate: 1024 x 1024 table; its own multinomial noise enters z)"},
   };
   for (ModelInfo& m : models) m.kind = "micrograin";
   return models;
@@ -255,10 +255,29 @@ std::vector<double> evaluate_geometry_model(const std::string& model, const Tabl
   throw std::invalid_argument("no model evaluation for quantity " + t.quantity);
 }
 
+// The vndf_sampler histogram's own noise: a cell of value v holds
+// k = v N w of the N samples (w its folded solid angle), multinomial:
+// se = sqrt(k (1 - k/N)) / (N w).
+std::vector<double> evaluate_geometry_stderr(const std::string& model, const Table& t, const Experiment& ex,
+                                             const std::vector<double>& values) {
+  if (model != "vndf_sampler") return {};
+  const double n = static_cast<double>(kVndfSamplerSamples), fold = ex.micrograin.anisotropic() ? 1.0 : 2.0;
+  const std::size_t dth = axis_index(t, "theta_m"), dph = axis_index(t, "phi_m_rel");
+  const Axis& th = t.axes[dth];
+  const Axis& ph = t.axes[dph];
+  std::vector<double> se(t.cells(), NAN);
+  for_each_cell(t, [&](std::size_t k, const std::vector<std::size_t>& i) {
+    const double w = fold * cell_solid_angle(th.lower(i[dth]), th.upper(i[dth]), ph.lower(i[dph]), ph.upper(i[dph]));
+    const double count = values[k] * n * w;
+    se[k] = std::sqrt(std::fmax(0.0, count * (1 - count / n))) / (n * w);
+  });
+  return se;
+}
+
 }  // namespace
 
 const ModelFamily& micrograin_geometry_models() {
-  static const ModelFamily family{geometry_model_list(), evaluate_geometry_model};
+  static const ModelFamily family{geometry_model_list(), evaluate_geometry_model, evaluate_geometry_stderr};
   return family;
 }
 

@@ -56,6 +56,14 @@ std::vector<double> evaluate_model(const std::string& model, const Table& table,
   throw std::invalid_argument("unknown model " + model);
 }
 
+std::vector<double> evaluate_model_stderr(const std::string& model, const Table& table, const Experiment& ex,
+                                          const std::vector<double>& values) {
+  for (const ModelFamily* f : families())
+    for (const ModelInfo& m : f->models)
+      if (m.name == model) return f->evaluate_stderr ? f->evaluate_stderr(model, table, ex, values) : std::vector<double>{};
+  throw std::invalid_argument("unknown model " + model);
+}
+
 std::vector<double> evaluate_model(const std::string& model, const Table& table, const MicrograinGeometry& geometry) {
   Experiment ex;
   ex.kind = "micrograin";

@@ -24,10 +24,15 @@ struct ModelInfo {
 
 // Model values on the cells of `table` (same layout as table.values()).
 using ModelEvaluator = std::function<std::vector<double>(const std::string& model, const Table&, const Experiment&)>;
+using ModelStderrEvaluator = std::function<std::vector<double>(const std::string& model, const Table&, const Experiment&,
+                                                               const std::vector<double>& values)>;
 
 struct ModelFamily {
   std::vector<ModelInfo> models;
   ModelEvaluator evaluate;
+  // Standard errors of models that are Monte Carlo estimates themselves,
+  // given their values (empty result: the model has no noise of its own). Optional.
+  ModelStderrEvaluator evaluate_stderr = nullptr;
 };
 
 // Calls fn(flat index, multi-index) for every cell of a table, row-major.
@@ -46,6 +51,10 @@ std::vector<ModelInfo> models_for(const std::string& quantity, const std::string
 const ModelInfo* find_model(const std::string& name);
 // Throws std::invalid_argument for a model that does not fit the table.
 std::vector<double> evaluate_model(const std::string& model, const Table& table, const Experiment& experiment);
+// Per-cell standard errors of a model's own Monte Carlo noise, given its
+// values from evaluate_model; empty if it has none.
+std::vector<double> evaluate_model_stderr(const std::string& model, const Table& table, const Experiment& experiment,
+                                          const std::vector<double>& values);
 // Micrograin geometry statistics only (kept for tests that build a geometry directly).
 std::vector<double> evaluate_model(const std::string& model, const Table& table, const MicrograinGeometry& geometry);
 

@@ -37,13 +37,19 @@ bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-std::vector<double> evaluate(const Table& t, const Experiment& ex, const BaseReflection& base) {
+// Mean and standard error of n per-point values from their sum and sum of squares.
+void mean_and_stderr(double sum, double sum2, double n, double scale, double& mean, double& se) {
+  mean = scale * sum / n;
+  se = scale * std::sqrt(std::fmax(0.0, sum2 - sum * sum / n) / (n * (n - 1)));
+}
+
+PoreBase evaluate(const Table& t, const Experiment& ex, const BaseReflection& base) {
   MicrograinGeometry geometry = ex.micrograin;
   geometry.tile = std::max(geometry.tile, kMinTile);
   const MicrograinField f(geometry, kSeed);
   const double pores = 1 - ex.micrograin.tau0;
   const double n = static_cast<double>(kPorePoints);
-  std::vector<double> out(t.cells(), NAN);
+  PoreBase out{std::vector<double>(t.cells(), NAN), std::vector<double>(t.cells(), NAN)};
   const Axis &ti = t.axes[0], &pi = t.axes[1];
   const bool delta_only = ends_with(t.name, "_delta");
   std::uint64_t dir = 0;
@@ -54,7 +60,9 @@ std::vector<double> evaluate(const Table& t, const Experiment& ex, const BaseRef
       if (t.quantity == "brdf") {
         const Axis &to = t.axes[2], &ph = t.axes[3];
         const std::size_t np = ph.size();
-        const Sums s = run_chunks(kPorePoints, to.size() * np * 3, key, [&](Rng& rng, std::uint64_t count, Sums& acc) {
+        // Per cell and channel: the sum over pore points, then the sum of squares.
+        const std::size_t m = to.size() * np * 3;
+        const Sums s = run_chunks(kPorePoints, 2 * m, key, [&](Rng& rng, std::uint64_t count, Sums& acc) {
           for (std::uint64_t k = 0; k < count; ++k) {
             const Vec3 p = pore_point(f, rng);
             if (!visible(f, p, wi)) continue;
@@ -66,36 +74,52 @@ std::vector<double> evaluate(const Table& t, const Experiment& ex, const BaseRef
                 const double phi = pi.values[b] + ph.lower(d) + rng.uniform() * (ph.upper(d) - ph.lower(d));
                 const Vec3 wo = spherical_direction(std::acos(mu), phi);
                 if (!visible(f, p, wo)) continue;
-                for (int ch = 0; ch < 3; ++ch) acc[(c * np + d) * 3 + ch] += base.brdf(ch, wi, wo);
+                for (int ch = 0; ch < 3; ++ch) {
+                  const double v = base.brdf(ch, wi, wo);
+                  acc[(c * np + d) * 3 + ch] += v;
+                  acc[m + (c * np + d) * 3 + ch] += v * v;
+                }
               }
           }
         });
         for (std::size_t c = 0; c < to.size(); ++c)
           for (std::size_t d = 0; d < np; ++d)
-            for (std::size_t ch = 0; ch < 3; ++ch) out[t.index({a, b, c, d, ch})] = pores * s[(c * np + d) * 3 + ch] / n;
+            for (std::size_t ch = 0; ch < 3; ++ch) {
+              const std::size_t j = (c * np + d) * 3 + ch, cell = t.index({a, b, c, d, ch});
+              mean_and_stderr(s[j], s[m + j], n, pores, out.values[cell], out.stderrs[cell]);
+            }
       } else {  // albedo or delta: the order1_base and total components
         const Vec3 mirror{-wi.x, -wi.y, wi.z};
         bool has_delta = false;
         for (int ch = 0; ch < 3; ++ch) has_delta = has_delta || base.delta_energy(ch, wi) > 0;
+        // Per channel: the sum over pore points of their energy, then its square.
         const Sums s = run_chunks(kPorePoints, 6, key, [&](Rng& rng, std::uint64_t count, Sums& acc) {
           for (std::uint64_t k = 0; k < count; ++k) {
             const Vec3 p = pore_point(f, rng);
             if (!visible(f, p, wi)) continue;
+            double e[3] = {0, 0, 0};
             if (!delta_only)
               for (int j = 0; j < kAlbedoDirections; ++j) {
                 const Vec3 wo = sample_cosine_hemisphere(rng.uniform(), rng.uniform());
                 if (!visible(f, p, wo)) continue;
-                for (int ch = 0; ch < 3; ++ch) acc[ch] += kPi * base.brdf(ch, wi, wo) / kAlbedoDirections;
+                for (int ch = 0; ch < 3; ++ch) e[ch] += kPi * base.brdf(ch, wi, wo) / kAlbedoDirections;
               }
             if (has_delta && visible(f, p, mirror))
-              for (int ch = 0; ch < 3; ++ch) acc[3 + ch] += base.delta_energy(ch, wi);
+              for (int ch = 0; ch < 3; ++ch) e[ch] += base.delta_energy(ch, wi);
+            for (int ch = 0; ch < 3; ++ch) {
+              acc[ch] += e[ch];
+              acc[3 + ch] += e[ch] * e[ch];
+            }
           }
         });
         const std::size_t base_component = 1, total = t.axes[2].size() - 1;  // order1_base, total
         for (std::size_t ch = 0; ch < 3; ++ch) {
-          const double e = pores * ((delta_only ? 0.0 : s[ch]) + s[3 + ch]) / n;
-          out[t.index({a, b, base_component, ch})] = e;
-          out[t.index({a, b, total, ch})] = e;
+          double e, se;
+          mean_and_stderr(s[ch], s[3 + ch], n, pores, e, se);
+          for (const std::size_t comp : {base_component, total}) {
+            out.values[t.index({a, b, comp, ch})] = e;
+            out.stderrs[t.index({a, b, comp, ch})] = se;
+          }
         }
       }
     }
@@ -104,7 +128,7 @@ std::vector<double> evaluate(const Table& t, const Experiment& ex, const BaseRef
 
 }  // namespace
 
-std::vector<double> simulated_pore_base(const Table& t, const Experiment& ex, const BaseReflection& base) {
+const PoreBase& simulated_pore_base(const Table& t, const Experiment& ex, const BaseReflection& base) {
   // Several checks share a table's axes (total and order-1 parts): estimate once.
   std::ostringstream key;
   key.precision(17);
@@ -114,16 +138,15 @@ std::vector<double> simulated_pore_base(const Table& t, const Experiment& ex, co
     for (double v : a.values) key << ',' << v;
   }
   static std::mutex mutex;
-  static std::map<std::string, std::vector<double>> cache;
+  static std::map<std::string, PoreBase> cache;  // nodes stay put: references remain valid
   {
     std::lock_guard<std::mutex> lock(mutex);
     const auto it = cache.find(key.str());
     if (it != cache.end()) return it->second;
   }
-  std::vector<double> v = evaluate(t, ex, base);  // not under the lock: it runs TBB tasks
+  PoreBase v = evaluate(t, ex, base);  // not under the lock: it runs TBB tasks
   std::lock_guard<std::mutex> lock(mutex);
-  cache.emplace(key.str(), v);
-  return v;
+  return cache.emplace(key.str(), std::move(v)).first->second;
 }
 
 }  // namespace mcref

@@ -12,7 +12,7 @@
 // own) and, per point
 // and cell, one outgoing direction drawn cosine-weighted inside the cell: no
 // quadrature error at the hot spot, where V_p peaks. Relative noise about
-// 1 % per cell.
+// 1 % per cell, estimated per cell from the spread over pore points.
 //   brdf tables:   (1 - tau0) <V_p f_B> per cell (1/sr), all channels;
 //   albedo tables: (1 - tau0) [pi <V_p f_B>_cos + V_p(i, mirror i) E_delta]
 //                  in the order1_base and total components, others NaN;
@@ -30,6 +30,11 @@ struct BaseReflection {
   std::function<double(int channel, Vec3 i)> delta_energy;       // energy of its mirror lobe
 };
 
-std::vector<double> simulated_pore_base(const Table& t, const Experiment& ex, const BaseReflection& base);
+// The estimate and its per-cell standard errors (from the spread over pore
+// points), cached per experiment and table shape.
+struct PoreBase {
+  std::vector<double> values, stderrs;
+};
+const PoreBase& simulated_pore_base(const Table& t, const Experiment& ex, const BaseReflection& base);
 
 }  // namespace mcref

@@ -282,7 +282,8 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
       r.tolerance = chk.tolerance;
       r.model_values = evaluate_model(chk.model, *t, ex);
       exclude_duplicate_channels(*t, r.model_values);
-      r.comparison = compare(t->values(), t->stderrs(), r.model_values, t->batches);
+      const std::vector<double> model_se = evaluate_model_stderr(chk.model, *t, ex, r.model_values);
+      r.comparison = compare(t->values(), t->stderrs(), r.model_values, t->batches, model_se);
       r.verdict = judge(r.comparison, info->exact, suite.significance, chk.tolerance);
       if (r.verdict.status == "FAIL") ++failures;
       cr.checks.push_back(std::move(r));
