@@ -31,15 +31,15 @@ TEST(Metrics, ModelNoiseEntersInQuadrature) {
 }
 
 // Welch-Satterthwaite: se = mse = 0.1 with 5 batches gives 16 degrees of
-// freedom for t = 1/sqrt(0.02); a zero-variance cell with model noise is
-// compared by (sim - model)/mse, normal.
+// freedom for t = 1/sqrt(0.02). A zero-variance cell (no error bar from the
+// simulation) is judged as without model noise: an equal cell agrees.
 TEST(Metrics, ModelNoiseDegreesOfFreedom) {
   const Comparison a = compare({1.0}, {0.1}, {0.0}, 5, {0.1});
   const Comparison b = compare({1.0}, {std::sqrt(0.02)}, {0.0}, 17);  // t with 16 dof, no model noise
   EXPECT_NEAR(a.z[0], b.z[0], 1e-12);
-  const Comparison c = compare({1.0}, {0.0}, {0.7}, 5, {0.1});
-  EXPECT_EQ(c.cells, 1u);
-  EXPECT_NEAR(c.z[0], 3.0, 1e-12);
+  const Comparison c = compare({0.7}, {0.0}, {0.7}, 5, {1e-17});
+  EXPECT_EQ(c.cells, 0u);
+  EXPECT_EQ(c.exact_cells, 1u);
 }
 
 TEST(Metrics, ExactModelWithinErrorPasses) {

@@ -18,8 +18,7 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
       if (std::isfinite(sim[i]) && !std::isfinite(model[i])) ++c.model_undefined;
       continue;
     }
-    const double mse = model_se.empty() || !std::isfinite(model_se[i]) ? 0.0 : model_se[i];
-    if (se[i] <= 0 && mse <= 0) {
+    if (se[i] <= 0) {
       // Every batch gave the same value (all paths scattered, every sample
       // visible, or a bin that stayed empty): there is no error bar. Equal to
       // 1e-6 counts as agreement; a gross difference (> 1 %) of a non-empty
@@ -33,9 +32,10 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
 
     // A model with Monte Carlo noise of its own (many samples: normal) adds
     // it in quadrature; the degrees of freedom follow Welch-Satterthwaite.
-    const double var = se[i] * se[i] + mse * mse;
+    const double mse = model_se.empty() || !std::isfinite(model_se[i]) ? 0.0 : model_se[i];
+    const double var = se[i] * se[i] + mse * mse, r = var / (se[i] * se[i]);
     const double t = (sim[i] - model[i]) / std::sqrt(var);
-    const double nu_eff = se[i] > 0 ? nu * (var / (se[i] * se[i])) * (var / (se[i] * se[i])) : INFINITY;
+    const double nu_eff = nu * r * r;
     double z = t;
     if (nu_eff < 1e7) {
       // Probability-preserving map from t(nu) to N(0, 1), done on the tail

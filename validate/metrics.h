@@ -28,8 +28,9 @@ struct Comparison {
 // mapped to the standard normal quantile of the same probability, so that
 // chi2 and the |z| bound are exact for any batch count. `model_se` (optional,
 // per cell): the standard error of a model that is itself a Monte Carlo
-// estimate; it is added in quadrature, with Welch-Satterthwaite degrees of
-// freedom (the model's own count taken as infinite).
+// estimate; it is added in quadrature where the simulation has an error bar,
+// with Welch-Satterthwaite degrees of freedom (the model's own count taken as
+// infinite). Zero-variance cells are judged as without it.
 Comparison compare(const std::vector<double>& sim, const std::vector<double>& stderr_,
                    const std::vector<double>& model, long long batches, const std::vector<double>& model_se = {});
 

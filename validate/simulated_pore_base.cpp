@@ -37,10 +37,12 @@ bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-// Mean and standard error of n per-point values from their sum and sum of squares.
+// Mean and standard error of n per-point values from their sum and sum of
+// squares; a spread at the rounding level of sum2 (all values equal) is 0.
 void mean_and_stderr(double sum, double sum2, double n, double scale, double& mean, double& se) {
   mean = scale * sum / n;
-  se = scale * std::sqrt(std::fmax(0.0, sum2 - sum * sum / n) / (n * (n - 1)));
+  const double spread = sum2 - sum * sum / n;
+  se = spread > 1e-12 * sum2 ? scale * std::sqrt(spread / (n * (n - 1))) : 0.0;
 }
 
 PoreBase evaluate(const Table& t, const Experiment& ex, const BaseReflection& base) {
