@@ -10,6 +10,7 @@
 
 #include "models/micrograin/micrograin_bsdf.h"
 #include "sim/core/quadrature.h"
+#include "sim/tally/brdf_tally.h"
 #include "validate/model_evaluation.h"
 #include "validate/simulated_pore_base.h"
 
@@ -166,7 +167,7 @@ std::vector<double> evaluate_brdf(const Spec& s, const Table& t, const Experimen
 
 std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experiment& ex, const mg::GrainField& f) {
   std::vector<double> out(t.cells(), NAN);
-  const bool delta_table = t.name.size() >= 6 && t.name.compare(t.name.size() - 6, 6, "_delta") == 0;
+  const bool delta_table = is_delta_table(t.name);
   const Axis &ti = t.axes[0], &pi = t.axes[1];
   const std::size_t total = t.axes[2].size() - 1, grain_component = 0, base = 1;  // order1_grain, order1_base
   const GaussLegendre gm(24), gp(24);
@@ -229,7 +230,7 @@ std::vector<double> evaluate_simulated_vp(const Spec& s, const Table& t, const E
     for (std::size_t k = 0; k < out.size(); ++k) out[k] += g[k];
     return out;
   }
-  const bool delta_table = t.name.size() >= 6 && t.name.compare(t.name.size() - 6, 6, "_delta") == 0;
+  const bool delta_table = is_delta_table(t.name);
   if (delta_table) return out;
   const std::vector<double> g = evaluate_albedo(grain, t, ex, f);  // its order1_grain component
   const Axis &ti = t.axes[0], &pi = t.axes[1];
@@ -259,17 +260,12 @@ std::vector<double> evaluate(const std::string& model, const Table& t, const Exp
 }
 
 // The measured-V_p models carry the noise of that measurement (the grain
-// part is analytic): its standard errors, 0 on order1_grain albedo cells.
+// part is analytic; its cells have no measured error: NaN, read as 0).
 std::vector<double> evaluate_stderr(const std::string& model, const Table& t, const Experiment& ex,
                                     const std::vector<double>&) {
   const auto it = specs().find(model);
   if (it == specs().end() || !it->second.simulated_vp || !ex.materials.configured) return {};
-  std::vector<double> se = measured_pore_base(t, ex).stderrs;
-  if (t.quantity == "albedo" && it->second.part != Spec::Part::Base)
-    for (std::size_t a = 0; a < t.axes[0].size(); ++a)
-      for (std::size_t b = 0; b < t.axes[1].size(); ++b)
-        for (std::size_t k = 0; k < 3; ++k) se[t.index({a, b, 0, k})] = 0;  // order1_grain
-  return se;
+  return measured_pore_base(t, ex).stderrs;
 }
 
 }  // namespace

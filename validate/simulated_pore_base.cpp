@@ -6,9 +6,11 @@
 #include <mutex>
 #include <sstream>
 
+#include "sim/core/statistics.h"
 #include "sim/core/warp.h"
 #include "sim/estimators/estimator.h"
 #include "sim/geometry/micrograin_field.h"
+#include "sim/tally/brdf_tally.h"
 
 namespace mcref {
 
@@ -33,18 +35,6 @@ bool visible(const MicrograinField& f, Vec3 p, Vec3 w) {
   return !f.occluded_unit(p, unit_direction(f, w), MicrograinField::kNoGrain);
 }
 
-bool ends_with(const std::string& s, const std::string& tail) {
-  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
-}
-
-// Mean and standard error of n per-point values from their sum and sum of
-// squares; a spread at the rounding level of sum2 (all values equal) is 0.
-void mean_and_stderr(double sum, double sum2, double n, double scale, double& mean, double& se) {
-  mean = scale * sum / n;
-  const double spread = sum2 - sum * sum / n;
-  se = spread > 1e-12 * sum2 ? scale * std::sqrt(spread / (n * (n - 1))) : 0.0;
-}
-
 PoreBase evaluate(const Table& t, const Experiment& ex, const BaseReflection& base) {
   MicrograinGeometry geometry = ex.micrograin;
   geometry.tile = std::max(geometry.tile, kMinTile);
@@ -53,7 +43,7 @@ PoreBase evaluate(const Table& t, const Experiment& ex, const BaseReflection& ba
   const double n = static_cast<double>(kPorePoints);
   PoreBase out{std::vector<double>(t.cells(), NAN), std::vector<double>(t.cells(), NAN)};
   const Axis &ti = t.axes[0], &pi = t.axes[1];
-  const bool delta_only = ends_with(t.name, "_delta");
+  const bool delta_only = is_delta_table(t.name);
   std::uint64_t dir = 0;
   for (std::size_t a = 0; a < ti.size(); ++a)
     for (std::size_t b = 0; b < pi.size(); ++b, ++dir) {
@@ -88,7 +78,8 @@ PoreBase evaluate(const Table& t, const Experiment& ex, const BaseReflection& ba
           for (std::size_t d = 0; d < np; ++d)
             for (std::size_t ch = 0; ch < 3; ++ch) {
               const std::size_t j = (c * np + d) * 3 + ch, cell = t.index({a, b, c, d, ch});
-              mean_and_stderr(s[j], s[m + j], n, pores, out.values[cell], out.stderrs[cell]);
+              out.values[cell] = pores * s[j] / n;
+              out.stderrs[cell] = pores * stderr_of_mean(s[j], s[m + j], n);
             }
       } else {  // albedo or delta: the order1_base and total components
         const Vec3 mirror{-wi.x, -wi.y, wi.z};
@@ -116,8 +107,7 @@ PoreBase evaluate(const Table& t, const Experiment& ex, const BaseReflection& ba
         });
         const std::size_t base_component = 1, total = t.axes[2].size() - 1;  // order1_base, total
         for (std::size_t ch = 0; ch < 3; ++ch) {
-          double e, se;
-          mean_and_stderr(s[ch], s[3 + ch], n, pores, e, se);
+          const double e = pores * s[ch] / n, se = pores * stderr_of_mean(s[ch], s[3 + ch], n);
           for (const std::size_t comp : {base_component, total}) {
             out.values[t.index({a, b, comp, ch})] = e;
             out.stderrs[t.index({a, b, comp, ch})] = se;
@@ -134,7 +124,7 @@ const PoreBase& simulated_pore_base(const Table& t, const Experiment& ex, const 
   // Several checks share a table's axes (total and order-1 parts): estimate once.
   std::ostringstream key;
   key.precision(17);
-  key << ex.text << '|' << t.quantity << '|' << ends_with(t.name, "_delta");
+  key << ex.text << '|' << t.quantity << '|' << is_delta_table(t.name);
   for (const Axis& a : t.axes) {
     key << '|' << a.name;
     for (double v : a.values) key << ',' << v;

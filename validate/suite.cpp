@@ -9,6 +9,7 @@
 #include "sim/config/toml_reader.h"
 #include "sim/io/table_file.h"
 #include "sim/run/simulate.h"
+#include "sim/tally/brdf_tally.h"
 #include "validate/metrics.h"
 #include "validate/model_evaluation.h"
 #include "validate/report.h"
@@ -169,8 +170,7 @@ std::vector<ErrorBudget> error_budgets(const TableFile& f, const std::vector<Che
   std::vector<ErrorBudget> out;
   for (const CheckResult& r : checks) {
     const Table* t = f.find(r.table);
-    const bool delta_table = r.table.size() >= 6 && r.table.compare(r.table.size() - 6, 6, "_delta") == 0;
-    if (!t || r.quantity != "albedo" || delta_table || t->axes.size() != 4 || t->attributes.count("components") == 0)
+    if (!t || r.quantity != "albedo" || is_delta_table(r.table) || t->axes.size() != 4 || t->attributes.count("components") == 0)
       continue;
     std::vector<std::string> names;
     std::stringstream ss(t->attributes.at("components"));

@@ -70,10 +70,6 @@ double VndfSampler::inverse_sigma(double ci, double si, double xi_area) const {
   return (top + fy * (bottom - top)) * (si / kTableScale);
 }
 
-double VndfSampler::sample_cos_theta(double tau0, Vec3 iu, double xi) const {
-  return sample_cos_theta(tau0, iu.z, std::sqrt(std::max(0.0, 1 - iu.z * iu.z)), xi);
-}
-
 double VndfSampler::sample_cos_theta(double tau0, double ci, double si, double xi) const {
   const double rho = -std::log1p(-tau0) / kPi;  // unit-space density
   const double tau_i0 = -std::expm1(-rho * sigma_at_zero(ci));

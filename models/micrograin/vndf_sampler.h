@@ -36,7 +36,6 @@ class VndfSampler {
   VndfSampler();  // builds the sigma^-1 table (~0.3 s)
 
   // cos theta' of a visible normal (Listing 1), i_unit the unit-space direction.
-  double sample_cos_theta(double tau0, Vec3 i_unit, double xi) const;
   double sample_cos_theta(double tau0, double cos_theta_i, double sin_theta_i, double xi) const;
   // phi' relative to the azimuth of i' (Sec. 4.2, Listing 3), given cos theta'.
   static double sample_phi(Vec3 i_unit, double cos_theta, double u_s, double u_t);
@@ -70,7 +69,6 @@ struct PhiConditional {
   double slope;  // (h0 - h1) / phi_q
   double pdf(double phi) const { return norm * (a * std::cos(phi) + b); }                 // Eq. 26
   double cdf(double phi) const { return 0.5 + norm * (a * std::sin(phi) + b * phi); }     // Eq. 22
-  double dpdf(double phi) const { return -norm * a * std::sin(phi); }                     // Eq. 27
   double tent_pdf(double phi) const { return h1 + slope * std::fabs(phi); }              // Eq. 28
   double tent_inverse(double u) const;                                                   // Eq. 31
   // The triangle cut of the tent sample of u_s (Listing 3, lines 16–24).

@@ -8,6 +8,17 @@
 
 namespace mcref {
 
+// Standard error of the mean of n samples from their sum and sum of squares.
+// A value identical in every sample leaves only rounding in sum_sq - n mean^2,
+// which grows with the count of summed terms (up to ~n eps sum_sq): a
+// variance below 64 eps sum_sq / min(n, 64) counts as 0.
+inline double stderr_of_mean(double sum, double sum_sq, double n) {
+  const double mean = sum / n;
+  double var = std::fmax(0.0, (sum_sq - n * mean * mean) / (n - 1));
+  if (var <= 64 * 2.220446049250313e-16 * sum_sq / std::fmin(n, 64.0)) var = 0;
+  return std::sqrt(var / n);
+}
+
 inline double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
 
 inline double normal_quantile(double p) {

@@ -25,8 +25,6 @@ std::string MicroBrdf::name() const {
 
 namespace {
 
-Rgb conductor_fresnel(const MicroBrdf& b, double c) { return fresnel_conductor(c, b.eta, b.kappa); }
-
 Vec3 mirror(Vec3 w, Vec3 n) { return n * (2 * dot(w, n)) - w; }
 
 // The Lambertian body under a smooth dielectric: the light refracted into the
@@ -74,7 +72,7 @@ MicroBrdfSample sample_micro_brdf(const MicroBrdf& b, Vec3 wi, Vec3 n, Rng& rng)
     }
     case MicroBrdf::Type::Conductor:
       s.wo = mirror(wi, n);
-      s.weight = conductor_fresnel(b, c);
+      s.weight = fresnel_conductor(c, b.eta, b.kappa);
       s.delta = true;
       return s;
     case MicroBrdf::Type::RoughConductor: {
@@ -88,7 +86,7 @@ MicroBrdfSample sample_micro_brdf(const MicroBrdf& b, Vec3 wi, Vec3 n, Rng& rng)
       }
       const double li = ggx_lambda(b.alpha, wl), lo = ggx_lambda(b.alpha, ol);
       s.wo = fr.to_world(ol);
-      s.weight = conductor_fresnel(b, dot(wl, m)) * ((1 + li) / (1 + li + lo));
+      s.weight = fresnel_conductor(dot(wl, m), b.eta, b.kappa) * ((1 + li) / (1 + li + lo));
       return s;
     }
     case MicroBrdf::Type::DiffuseSpecular: {
@@ -113,7 +111,7 @@ Rgb micro_brdf_albedo(const MicroBrdf& b, double cos_theta_i, Rng& rng, int samp
   switch (b.type) {
     case MicroBrdf::Type::Black: return Rgb(0.0);
     case MicroBrdf::Type::Lambertian: return b.albedo;
-    case MicroBrdf::Type::Conductor: return conductor_fresnel(b, cos_theta_i);
+    case MicroBrdf::Type::Conductor: return fresnel_conductor(cos_theta_i, b.eta, b.kappa);
     default: break;
   }
   Rgb sum;

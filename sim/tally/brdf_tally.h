@@ -66,6 +66,11 @@ class BrdfAccumulator {
 //   <name><hemi>_delta                delta-lobe energy per (theta_i, phi_i, component + total, channel)
 std::vector<Table> make_brdf_tables(const std::string& name, const std::vector<double>& theta_i,
                                     const std::vector<double>& phi_i, const BrdfLayout& layout);
+// True for the <name><hemi>_delta tables (delta-lobe energies, not densities).
+inline bool is_delta_table(const std::string& table_name) {
+  const std::string tail = "_delta";
+  return table_name.size() >= tail.size() && table_name.compare(table_name.size() - tail.size(), tail.size(), tail) == 0;
+}
 // Turns the sums of every incident direction (paths each) into one batch of
 // every table made by make_brdf_tables.
 void add_brdf_batch(const std::vector<std::vector<double>>& sums_per_direction, double paths,

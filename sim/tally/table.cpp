@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sim/core/statistics.h"
+
 namespace mcref {
 
 Axis Axis::bins(std::string name, std::string unit, std::vector<double> edges) {
@@ -81,11 +83,7 @@ double Table::value(std::size_t i) const { return batches > 0 ? sum[i] / batches
 
 double Table::stderr_of(std::size_t i) const {
   if (batches < 2) return NAN;
-  const double n = static_cast<double>(batches), mean = sum[i] / n;
-  double var = std::fmax(0.0, (sum_sq[i] - n * mean * mean) / (n - 1));
-  // A value identical in every batch leaves only rounding in sum_sq - n mean^2.
-  if (var <= 64 * 2.220446049250313e-16 * sum_sq[i] / n) var = 0;
-  return std::sqrt(var / n);
+  return stderr_of_mean(sum[i], sum_sq[i], static_cast<double>(batches));
 }
 
 std::vector<double> Table::values() const {
