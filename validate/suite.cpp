@@ -1,10 +1,16 @@
 #include "validate/suite.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "sim/config/toml_reader.h"
 #include "sim/io/table_file.h"
@@ -128,6 +134,9 @@ TableFile tables_for(const Case& c, const Experiment& ex, const SuiteOptions& o,
   so.label = "[" + std::to_string(k + 1) + "/" + std::to_string(n) + "] " + c.name;
   TableFile f;
   f.tables = simulate(ex, so);
+  // In name order, as a cached file lists them: the report and results.json
+  // come out the same whether the tables were simulated or reused.
+  std::sort(f.tables.begin(), f.tables.end(), [](const Table& a, const Table& b) { return a.name < b.name; });
   f.provenance = make_provenance(ex.text, ex.file, ex.run.seed, o.command_line);
   write_table_file(path, f);
   return f;
@@ -230,9 +239,30 @@ void exclude_duplicate_channels(const Table& t, std::vector<double>& model) {
     }
 }
 
+// One model against one simulated table.
+CheckResult run_check(const Check& chk, const Table& t, const Experiment& ex, const Suite& suite) {
+  const ModelInfo* info = find_model(chk.model);
+  CheckResult r;
+  r.table = chk.table;
+  r.quantity = t.quantity;
+  r.model = chk.model;
+  r.exact = info->exact;
+  r.model_description = info->description;
+  r.tolerance = chk.tolerance;
+  r.model_values = evaluate_model(chk.model, t, ex);
+  exclude_duplicate_channels(t, r.model_values);
+  const std::vector<double> model_se = evaluate_model_stderr(chk.model, t, ex, r.model_values);
+  r.comparison = compare(t.values(), t.stderrs(), r.model_values, t.batches, model_se);
+  r.verdict = judge(r.comparison, info->exact, suite.significance, chk.tolerance);
+  return r;
+}
+
 }  // namespace
 
 int run_suite(const Suite& suite, const SuiteOptions& o) {
+  // --threads bounds the model checks as well as the simulations.
+  const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   // Validate every case's experiment before simulating anything.
   std::vector<Experiment> experiments;
   for (const Case& c : suite.cases) experiments.push_back(load_experiment(c.experiment_path, c.sets));
@@ -269,25 +299,16 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
                 (m.name == "ndf_ggx_alpha_tilde" || m.name == "g1_smith_series_n4" || m.name == "g1_smith_ggx_alpha_tilde")))
             checks.push_back({t.name, m.name, 0.0});
         }
-    for (const Check& chk : checks) {
-      const Table* t = f.find(chk.table);
-      if (!t) throw std::runtime_error("table " + chk.table + " missing from " + cr.table_file);
-      const ModelInfo* info = find_model(chk.model);
-      CheckResult r;
-      r.table = chk.table;
-      r.quantity = t->quantity;
-      r.model = chk.model;
-      r.exact = info->exact;
-      r.model_description = info->description;
-      r.tolerance = chk.tolerance;
-      r.model_values = evaluate_model(chk.model, *t, ex);
-      exclude_duplicate_channels(*t, r.model_values);
-      const std::vector<double> model_se = evaluate_model_stderr(chk.model, *t, ex, r.model_values);
-      r.comparison = compare(t->values(), t->stderrs(), r.model_values, t->batches, model_se);
-      r.verdict = judge(r.comparison, info->exact, suite.significance, chk.tolerance);
-      if (r.verdict.status == "FAIL") ++failures;
-      cr.checks.push_back(std::move(r));
-    }
+    for (const Check& chk : checks)
+      if (!f.find(chk.table)) throw std::runtime_error("table " + chk.table + " missing from " + cr.table_file);
+    // The checks of a case are independent: evaluated in parallel, kept in order.
+    cr.checks.resize(checks.size());
+    tbb::parallel_for(std::size_t{0}, checks.size(), [&](std::size_t i) {
+      // Isolated, so that a thread waiting inside one check (on a model's
+      // cache lock, or for its nested parallel loops) never starts another.
+      tbb::this_task_arena::isolate([&] { cr.checks[i] = run_check(checks[i], *f.find(checks[i].table), ex, suite); });
+    });
+    for (const CheckResult& r : cr.checks) failures += r.verdict.status == "FAIL";
     cr.budget = error_budgets(f, cr.checks);
     results.push_back(std::move(cr));
     if (!o.quiet) {
