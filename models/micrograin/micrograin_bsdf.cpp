@@ -108,7 +108,13 @@ double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior) {
   const double ti = spherical_theta(to_unit_direction(f, i)), to = spherical_theta(to_unit_direction(f, o));
   std::vector<double> cuts{0.0, kPi / 2 - std::max(ti, to), kPi / 2 - std::min(ti, to), kPi / 2};
   static const GaussLegendre rule(16);
-  const int nphi = 128;
+  constexpr int nphi = 128;
+  // cos and sin of the ring's azimuths 2 pi (p + 1/2) / nphi.
+  static const std::vector<Vec3> ring_azimuths = [] {
+    std::vector<Vec3> v(nphi);
+    for (int p = 0; p < nphi; ++p) v[p] = {std::cos(2 * kPi * (p + 0.5) / nphi), std::sin(2 * kPi * (p + 0.5) / nphi), 0};
+    return v;
+  }();
   const bool fresnel = ior > 1;
   double sum = 0;
   for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
@@ -118,17 +124,21 @@ double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior) {
       const double th = 0.5 * (a + b) + 0.5 * (b - a) * rule.x[k];
       const double h = std::cos(th), st = std::sin(th);
       const double gi = distant_masking(f, i, h), go = distant_masking(f, o, h);
+      // D(m) dw_m = D1(h) |M m'| dw_m' (vNDF Eq. 7 with the Jacobian of the
+      // unit-space map m = M m' / |M m'|): D1 is constant on the ring.
+      const double d1 = unit_ndf(f.tau0, h);
       double ring = 0;
-      for (int p = 0; p < nphi; ++p) {
-        const double ph = 2 * kPi * (p + 0.5) / nphi;
-        const Vec3 m = from_unit_normal(f, {st * std::cos(ph), st * std::sin(ph), h});
+      for (const Vec3& az : ring_azimuths) {
+        const Vec3 mm{st * az.x * f.beta_x, st * az.y * f.beta_y, h};  // M m'
+        const double len = std::sqrt(dot(mm, mm));
+        const Vec3 m = mm * (1 / len);
         const double im = dot(i, m), om = dot(o, m);
         if (im <= 0 || om <= 0) continue;
         double t = 1;
         if (fresnel) t = (1 - fresnel_dielectric(im, ior)) * (1 - fresnel_dielectric(om, ior));
-        ring += ndf(f, m) * im * om * t / unit_normal_jacobian(f, m);
+        ring += len * im * om * t;
       }
-      sum += 0.5 * (b - a) * rule.w[k] * st * ring * (2 * kPi / nphi) * gi * go;
+      sum += 0.5 * (b - a) * rule.w[k] * st * d1 * ring * (2 * kPi / nphi) * gi * go;
     }
   }
   const double tau0 = f.tau0;
