@@ -398,8 +398,9 @@ TEST(MicrograinFieldPoisson, MeanCountMatchesDensityTimesArea) {
   }
 }
 
-// nearest_centre_distance against the brute-force minimum-image distance,
-// for 5000 points per field (seed 71), some far outside the tile.
+// nearest_centre_distance and under_grain against the brute-force
+// minimum-image distance, for 5000 points per field (seed 71), some far
+// outside the tile.
 TEST(MicrograinFieldNeighbours, NearestCentreDistanceMatchesBruteForce) {
   for (const Case& c : kCases) {
     const MicrograinField f(geometry_of(c), c.seed);
@@ -415,6 +416,8 @@ TEST(MicrograinFieldNeighbours, NearestCentreDistanceMatchesBruteForce) {
         best = std::min(best, std::hypot(dx, dy));
       }
       ASSERT_NEAR(f.nearest_centre_distance(x, y), best, 1e-9) << c.label << " at (" << x << ", " << y << ")";
+      if (std::fabs(best - 1) > 1e-9)
+        ASSERT_EQ(f.under_grain(x, y), best < 1) << c.label << " at (" << x << ", " << y << "), distance " << best;
     }
   }
 }

@@ -27,7 +27,7 @@ constexpr double kMinTile = 400;  // grain radii
 Vec3 pore_point(const MicrograinField& f, Rng& rng) {
   for (;;) {
     const Vec3 p{rng.uniform() * f.unit_side_x(), rng.uniform() * f.unit_side_y(), 0.0};
-    if (f.nearest_centre_distance(p.x, p.y) >= 1.0) return p;
+    if (!f.under_grain(p.x, p.y)) return p;
   }
 }
 

@@ -41,7 +41,7 @@ Estimator pore_visibility_estimator() {
       std::vector<char> vis(dirs.size());
       for (std::uint64_t k = 0; k < n; ++k) {
         const Vec3 p{rng.uniform() * f.unit_side_x(), rng.uniform() * f.unit_side_y(), 0.0};
-        if (f.nearest_centre_distance(p.x, p.y) < 1.0) continue;  // under a grain: not a pore
+        if (f.under_grain(p.x, p.y)) continue;  // under a grain: not a pore
         s[0] += 1;
         for (std::size_t d = 0; d < dirs.size(); ++d) {
           vis[d] = !f.occluded_unit(p, dirs[d], MicrograinField::kNoGrain);

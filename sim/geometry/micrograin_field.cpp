@@ -300,8 +300,10 @@ Hit MicrograinField::finish(const TraceSegment& first, const RTCRayHit& first_rh
   return Hit{};  // escape
 }
 
-void MicrograinField::for_grains_near(double x, double y, double reach,
-                                      const std::function<void(std::size_t, double)>& fn) const {
+// Visits the grains within unit-space distance `reach` of (x, y), periodic,
+// until fn(k, d2) returns true; returns whether it did.
+template <class Fn>
+bool MicrograinField::visit_grains_near(double x, double y, double reach, Fn&& fn) const {
   const int ix0 = static_cast<int>(std::floor((x - reach) / cell_x_));
   const int ix1 = static_cast<int>(std::floor((x + reach) / cell_x_));
   const int iy0 = static_cast<int>(std::floor((y - reach) / cell_y_));
@@ -319,10 +321,23 @@ void MicrograinField::for_grains_near(double x, double y, double reach,
         dx -= side_x_ * std::round(dx / side_x_);
         dy -= side_y_ * std::round(dy / side_y_);
         const double d2 = dx * dx + dy * dy;
-        if (d2 <= r2) fn(k, d2);
+        if (d2 <= r2 && fn(k, d2)) return true;
       }
     }
   }
+  return false;
+}
+
+void MicrograinField::for_grains_near(double x, double y, double reach,
+                                      const std::function<void(std::size_t, double)>& fn) const {
+  visit_grains_near(x, y, reach, [&](std::size_t k, double d2) {
+    fn(k, d2);
+    return false;
+  });
+}
+
+bool MicrograinField::under_grain(double x, double y) const {
+  return visit_grains_near(x, y, 1.0, [](std::size_t, double d2) { return d2 < 1.0; });
 }
 
 double MicrograinField::nearest_centre_distance(double x, double y) const {
@@ -337,11 +352,7 @@ double MicrograinField::nearest_centre_distance(double x, double y) const {
 }
 
 bool MicrograinField::inside_other_grain(Vec3 p, std::size_t except) const {
-  bool inside = false;
-  for_grains_near(p.x, p.y, 1.0, [&](std::size_t k, double d2) {
-    if (k != except && d2 + p.z * p.z < 1.0) inside = true;
-  });
-  return inside;
+  return visit_grains_near(p.x, p.y, 1.0, [&](std::size_t k, double d2) { return k != except && d2 + p.z * p.z < 1.0; });
 }
 
 }  // namespace mcref

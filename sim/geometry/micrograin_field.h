@@ -107,6 +107,9 @@ class MicrograinField {
   // Periodic unit-space distance from (x, y) to the closest centre
   // (infinity if the tile holds no grain).
   double nearest_centre_distance(double x, double y) const;
+  // True if the unit-space point (x, y) of the base lies under a grain: closer
+  // than 1 to a centre (periodic). Stops at the first such grain.
+  bool under_grain(double x, double y) const;
   // True if the unit-space point p lies strictly inside a grain other than `except`.
   bool inside_other_grain(Vec3 p, std::size_t except) const;
 
@@ -139,6 +142,8 @@ class MicrograinField {
 
  private:
   void build_grid();
+  template <class Fn>
+  bool visit_grains_near(double x, double y, double reach, Fn&& fn) const;
   void build_scene();
   template <bool kDetail>
   Hit make_hit(Hit::Kind kind, double t, Vec3 unit_position, Vec3 unit_normal, std::uint32_t grain) const;
