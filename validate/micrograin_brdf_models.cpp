@@ -8,6 +8,8 @@
 #include <map>
 #include <stdexcept>
 
+#include <tbb/parallel_for.h>
+
 #include "models/micrograin/micrograin_bsdf.h"
 #include "sim/core/quadrature.h"
 #include "sim/tally/brdf_tally.h"
@@ -137,31 +139,29 @@ void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& m
 std::vector<double> evaluate_brdf(const Spec& s, const Table& t, const Experiment& ex, const mg::GrainField& f) {
   std::vector<double> out(t.cells(), NAN);
   const Axis &ti = t.axes[0], &pi = t.axes[1], &to = t.axes[2], &ph = t.axes[3];
-  const bool folded = ex.isotropic;
   const int n = s.form == Spec::Form::Gdist ? 3 : 6;
   const GaussLegendre g(n);
-  for (std::size_t a = 0; a < ti.size(); ++a)
-    for (std::size_t b = 0; b < pi.size(); ++b) {
-      const Vec3 wi = spherical_direction(ti.values[a], pi.values[b]);
-      for (std::size_t c = 0; c < to.size(); ++c)
-        for (std::size_t d = 0; d < ph.size(); ++d) {
-          const double mu0 = std::cos(to.upper(c)), mu1 = std::cos(to.lower(c));
-          double num[3] = {0, 0, 0}, den = 0;
-          for (int u = 0; u < n; ++u)
-            for (int v = 0; v < n; ++v) {
-              const double mu = 0.5 * (mu0 + mu1) + 0.5 * (mu1 - mu0) * g.x[u];
-              const double phi = 0.5 * (ph.lower(d) + ph.upper(d)) + 0.5 * (ph.upper(d) - ph.lower(d)) * g.x[v];
-              const double w = g.w[u] * g.w[v] * mu;
-              const Vec3 wo = spherical_direction(std::acos(std::fmin(1.0, mu)), pi.values[b] + phi);
-              double fv[3];
-              eval_f(s, f, ex.materials, wi, wo, fv);
-              for (int k = 0; k < 3; ++k) num[k] += w * fv[k];
-              den += w;
-            }
-          for (std::size_t k = 0; k < 3; ++k) out[t.index({a, b, c, d, k})] = num[k] / den;
-          (void)folded;
+  // One task per (theta_i, phi_i, theta_o) row of cells; each writes only its own cells.
+  tbb::parallel_for(std::size_t{0}, ti.size() * pi.size() * to.size(), [&](std::size_t row) {
+    const std::size_t a = row / (pi.size() * to.size()), b = row / to.size() % pi.size(), c = row % to.size();
+    const Vec3 wi = spherical_direction(ti.values[a], pi.values[b]);
+    const double mu0 = std::cos(to.upper(c)), mu1 = std::cos(to.lower(c));
+    for (std::size_t d = 0; d < ph.size(); ++d) {
+      double num[3] = {0, 0, 0}, den = 0;
+      for (int u = 0; u < n; ++u)
+        for (int v = 0; v < n; ++v) {
+          const double mu = 0.5 * (mu0 + mu1) + 0.5 * (mu1 - mu0) * g.x[u];
+          const double phi = 0.5 * (ph.lower(d) + ph.upper(d)) + 0.5 * (ph.upper(d) - ph.lower(d)) * g.x[v];
+          const double w = g.w[u] * g.w[v] * mu;
+          const Vec3 wo = spherical_direction(std::acos(std::fmin(1.0, mu)), pi.values[b] + phi);
+          double fv[3];
+          eval_f(s, f, ex.materials, wi, wo, fv);
+          for (int k = 0; k < 3; ++k) num[k] += w * fv[k];
+          den += w;
         }
+      for (std::size_t k = 0; k < 3; ++k) out[t.index({a, b, c, d, k})] = num[k] / den;
     }
+  });
   return out;
 }
 
@@ -171,43 +171,44 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
   const Axis &ti = t.axes[0], &pi = t.axes[1];
   const std::size_t total = t.axes[2].size() - 1, grain_component = 0, base = 1;  // order1_grain, order1_base
   const GaussLegendre gm(24), gp(24);
-  for (std::size_t a = 0; a < ti.size(); ++a)
-    for (std::size_t b = 0; b < pi.size(); ++b) {
-      const Vec3 wi = spherical_direction(ti.values[a], pi.values[b]);
+  // One task per incident direction; each writes only its own cells.
+  tbb::parallel_for(std::size_t{0}, ti.size() * pi.size(), [&](std::size_t dir) {
+    const std::size_t a = dir / pi.size(), b = dir % pi.size();
+    const Vec3 wi = spherical_direction(ti.values[a], pi.values[b]);
+    double delta[3];
+    for (int k = 0; k < 3; ++k) delta[k] = mg::lrpb23_base_delta_energy(f, channel_of(ex.materials.base, k), wi);
+    if (delta_table) {
       for (std::size_t k = 0; k < 3; ++k) {
-        const double delta = mg::lrpb23_base_delta_energy(f, channel_of(ex.materials.base, static_cast<int>(k)), wi);
-        if (delta_table) {
-          out[t.index({a, b, base, k})] = delta;
-          out[t.index({a, b, total, k})] = delta;
-        }
+        out[t.index({a, b, base, k})] = delta[k];
+        out[t.index({a, b, total, k})] = delta[k];
       }
-      if (delta_table) continue;
-      // Energy of the grain part and of the base part (order-1 components of
-      // the table), so that a model's error splits into its order-1 terms and
-      // the multiple scattering it leaves out.
-      double e[2][3] = {{0, 0, 0}, {0, 0, 0}};
-      const double span = ex.isotropic ? kPi : 2 * kPi;
-      const Spec grain{Spec::Part::Grain, s.form, s.lambda}, base_part{Spec::Part::Base, s.form, s.lambda};
-      for (std::size_t u = 0; u < gm.x.size(); ++u)
-        for (std::size_t v = 0; v < gp.x.size(); ++v) {
-          const double mu = 0.5 + 0.5 * gm.x[u], phi = 0.5 * span * (1 + gp.x[v]);
-          const Vec3 wo = spherical_direction(std::acos(mu), pi.values[b] + phi);
-          const double w = 0.5 * gm.w[u] * 0.5 * span * gp.w[v] * mu * (ex.isotropic ? 2 : 1);
-          double fg[3], fb[3];
-          eval_f(grain, f, ex.materials, wi, wo, fg);
-          eval_f(base_part, f, ex.materials, wi, wo, fb);
-          for (int k = 0; k < 3; ++k) {
-            e[0][k] += w * fg[k];
-            e[1][k] += w * fb[k];
-          }
-        }
-      for (std::size_t k = 0; k < 3; ++k) {
-        const double delta = mg::lrpb23_base_delta_energy(f, channel_of(ex.materials.base, static_cast<int>(k)), wi);
-        out[t.index({a, b, grain_component, k})] = e[0][k];
-        out[t.index({a, b, base, k})] = e[1][k] + delta;
-        out[t.index({a, b, total, k})] = e[0][k] + e[1][k] + delta;
-      }
+      return;
     }
+    // Energy of the grain part and of the base part (order-1 components of
+    // the table), so that a model's error splits into its order-1 terms and
+    // the multiple scattering it leaves out.
+    double e[2][3] = {{0, 0, 0}, {0, 0, 0}};
+    const double span = ex.isotropic ? kPi : 2 * kPi;
+    const Spec grain{Spec::Part::Grain, s.form, s.lambda}, base_part{Spec::Part::Base, s.form, s.lambda};
+    for (std::size_t u = 0; u < gm.x.size(); ++u)
+      for (std::size_t v = 0; v < gp.x.size(); ++v) {
+        const double mu = 0.5 + 0.5 * gm.x[u], phi = 0.5 * span * (1 + gp.x[v]);
+        const Vec3 wo = spherical_direction(std::acos(mu), pi.values[b] + phi);
+        const double w = 0.5 * gm.w[u] * 0.5 * span * gp.w[v] * mu * (ex.isotropic ? 2 : 1);
+        double fg[3], fb[3];
+        eval_f(grain, f, ex.materials, wi, wo, fg);
+        eval_f(base_part, f, ex.materials, wi, wo, fb);
+        for (int k = 0; k < 3; ++k) {
+          e[0][k] += w * fg[k];
+          e[1][k] += w * fb[k];
+        }
+      }
+    for (std::size_t k = 0; k < 3; ++k) {
+      out[t.index({a, b, grain_component, k})] = e[0][k];
+      out[t.index({a, b, base, k})] = e[1][k] + delta[k];
+      out[t.index({a, b, total, k})] = e[0][k] + e[1][k] + delta[k];
+    }
+  });
   return out;
 }
 
