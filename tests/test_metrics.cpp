@@ -2,10 +2,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "sim/core/rng.h"
 #include "sim/core/vec.h"
 #include "validate/metrics.h"
+
+#if defined(__SSE__) || defined(__x86_64__)
+#include <xmmintrin.h>
+#endif
 
 using namespace mcref;
 
@@ -78,4 +83,29 @@ TEST(Metrics, StudentTailsAreMappedToNormalQuantiles) {
   const Comparison few = compare({3.0}, {1.0}, {0.0}, 4), many = compare({3.0}, {1.0}, {0.0}, 10000);
   EXPECT_LT(few.max_abs_z, many.max_abs_z);
   EXPECT_NEAR(many.max_abs_z, 3.0, 1e-2);
+}
+
+// Embree's threads may run with flush-to-zero / denormals-are-zero. Results
+// that underflow below the normal range must not depend on that mode, or a
+// check's p-value (and the z of extreme cells) would depend on which thread
+// computed it: 144 normal cells at z = 3.7 (p ~ 1e-316, a denormal), and
+// Student cells (16 batches) whose tails reach and pass the denormal range.
+TEST(Metrics, UnderflowDoesNotDependOnFlushToZero) {
+#if !(defined(__SSE__) || defined(__x86_64__))
+  GTEST_SKIP() << "MXCSR flush-to-zero is an x86 mode";
+#else
+  const std::vector<double> se(144, 1.0), model(144, 1.0);
+  std::vector<double> normal_cells(144, 1.0 + 3.7), student_cells(144, 1.0);
+  for (std::size_t i = 0; i < student_cells.size(); ++i) student_cells[i] += std::pow(10.0, 0.25 * i);  // t = 1 .. 1e36
+  const unsigned saved = _mm_getcsr();
+  const Comparison a = compare(normal_cells, se, model, 100000000), b = compare(student_cells, se, model, 16);
+  _mm_setcsr(saved | 0x8040);  // FTZ | DAZ
+  const Comparison a_ftz = compare(normal_cells, se, model, 100000000), b_ftz = compare(student_cells, se, model, 16);
+  _mm_setcsr(saved);
+  EXPECT_EQ(a.p_value, a_ftz.p_value);
+  EXPECT_GT(a.p_value, 0.0);  // gradual underflow: a denormal, not 0
+  EXPECT_LT(a.p_value, std::numeric_limits<double>::min());
+  for (std::size_t i = 0; i < student_cells.size(); ++i) EXPECT_EQ(b.z[i], b_ftz.z[i]) << "cell " << i;
+  EXPECT_EQ(b.chi2, b_ftz.chi2);
+#endif
 }
