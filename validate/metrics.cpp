@@ -10,7 +10,7 @@ namespace mcref {
 
 Comparison compare(const std::vector<double>& sim, const std::vector<double>& se, const std::vector<double>& model,
                    long long batches, const std::vector<double>& model_se) {
-  const IeeeDenormals ieee;  // the same z and p-value on every thread
+  const IeeeDenormals ieee;  // the same z and p-value on every thread (sim/core/fp_mode.h)
   Comparison c;
   c.z.assign(sim.size(), NAN);
   const double nu = static_cast<double>(batches - 1);

@@ -1,9 +1,11 @@
 #pragma once
-// Floating-point mode guard. Embree may leave the threads it runs on flushing
-// denormals to zero (MXCSR FTZ/DAZ); a result that passes through the
-// denormal range (a p-value near 1e-310, the Student tail of an extreme cell)
-// would then depend on which thread computed it. IeeeDenormals restores
-// IEEE gradual underflow for its scope, then the caller's mode.
+// Floating-point mode guard. A thread can run with denormals flushed to zero
+// (MXCSR FTZ/DAZ: the mode Embree asks for; a validation run gave the same
+// check a p-value of 1.9e-318 in one run and 0 in another). A result that
+// passes through the denormal range (a p-value near 1e-310, the Student tail
+// of an extreme cell) then depends on which thread computed it.
+// IeeeDenormals sets IEEE gradual underflow for its scope, then restores the
+// caller's mode.
 #if defined(__SSE__) || defined(__x86_64__)
 #include <xmmintrin.h>
 #endif
