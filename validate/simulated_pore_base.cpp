@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
+#include <future>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -129,16 +131,28 @@ const PoreBase& simulated_pore_base(const Table& t, const Experiment& ex, const 
     key << '|' << a.name;
     for (double v : a.values) key << ',' << v;
   }
+  // Checks run in parallel: the first to ask estimates, the others wait for
+  // its result (the map's futures keep every result alive).
   static std::mutex mutex;
-  static std::map<std::string, PoreBase> cache;  // nodes stay put: references remain valid
+  static std::map<std::string, std::shared_future<PoreBase>> cache;
+  std::promise<PoreBase> promise;
+  std::shared_future<PoreBase> result;
+  bool first = false;
   {
     std::lock_guard<std::mutex> lock(mutex);
-    const auto it = cache.find(key.str());
-    if (it != cache.end()) return it->second;
+    auto [it, inserted] = cache.try_emplace(key.str());
+    if (inserted) it->second = promise.get_future().share();
+    first = inserted;
+    result = it->second;
   }
-  PoreBase v = evaluate(t, ex, base);  // not under the lock: it runs TBB tasks
-  std::lock_guard<std::mutex> lock(mutex);
-  return cache.emplace(key.str(), std::move(v)).first->second;
+  if (first) {
+    try {
+      promise.set_value(evaluate(t, ex, base));  // not under the lock: it runs TBB tasks
+    } catch (...) {
+      promise.set_exception(std::current_exception());
+    }
+  }
+  return result.get();
 }
 
 }  // namespace mcref
