@@ -3,7 +3,8 @@
 // from direction i at a uniform point of the tile above the highest grain,
 // scatters on grains (micro-BRDF of the grain) and on the base plane
 // (micro-BRDF of the base) until it leaves upward. No depth limit: unbiased
-// Russian roulette on the RGB throughput (survival min(1, max channel)).
+// Russian roulette on the RGB throughput once its largest channel m falls below
+// 0.25 (survival m / 0.25).
 // Every escaping path is scored once, with its scattering order, the place of
 // its first event (order-1 class 0 = grain, 1 = base) and whether it is a
 // delta lobe (only exact mirror reflections on the flat base: the base's

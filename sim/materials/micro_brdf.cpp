@@ -43,7 +43,7 @@ MicroBrdfSample diffuse_under_dielectric(const MicroBrdf& b, Rng& rng) {
       return s;
     }
     s.weight = s.weight / q;
-    const Vec3 w = sample_cosine_hemisphere(rng.uniform(), rng.uniform());  // inside, toward the interface
+    const Vec3 w = sample_cosine_hemisphere(rng);  // inside, toward the interface
     const double f_in = mg::fresnel_dielectric(w.z, 1.0 / b.ior);        // from the body side
     if (rng.uniform() < f_in) continue;                                     // reflected back to the body
     const double sin2_out = b.ior * b.ior * (1 - w.z * w.z);
@@ -66,7 +66,7 @@ MicroBrdfSample sample_micro_brdf(const MicroBrdf& b, Vec3 wi, Vec3 n, Rng& rng)
       return s;
     case MicroBrdf::Type::Lambertian: {
       const Frame fr(n);
-      s.wo = fr.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
+      s.wo = fr.to_world(sample_cosine_hemisphere(rng));
       s.weight = b.albedo;
       return s;
     }
