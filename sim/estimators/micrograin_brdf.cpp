@@ -7,6 +7,8 @@
 // base's exact mirror reflection of the light seen through the pores is a
 // delta lobe: its energy is in <name>_delta, never in the bins, so the binned
 // tables stay densities.
+#include <cstdio>
+
 #include "sim/config/config_error.h"
 #include "sim/estimators/estimator.h"
 #include "sim/estimators/micrograin_walk.h"
@@ -38,7 +40,10 @@ Estimator micrograin_brdf_estimator() {
       t.attributes["grain_material"] = ex.materials.grain.name();
       t.attributes["base_material"] = ex.materials.base.name();
       t.attributes["order1_classes"] = "grain: first event on a grain; base: first event on the base plane";
-      t.attributes["russian_roulette"] = "unbiased, survival min(1, max RGB throughput); no depth limit";
+      char roulette[96];
+      std::snprintf(roulette, sizeof roulette, "unbiased, once the largest RGB throughput m < %g, survival m / %g; no depth limit",
+                    kRouletteThreshold, kRouletteThreshold);
+      t.attributes["russian_roulette"] = roulette;
       if (m.max_order > 0) t.attributes["max_order"] = std::to_string(m.max_order) + " (higher orders not scored)";
     }
     return tables;

@@ -5,15 +5,6 @@
 
 namespace mcref {
 
-namespace {
-// Paths keep their weight (no roulette) while its largest channel is above
-// this. Measured on tau0 = 0.6 with Lambertian grains 0.8 on a base 0.5:
-// against roulette at every event (survival = albedo), 1.3 times as many rays
-// per path, and 1.25 times the efficiency (1 / variance x time) of a BRDF
-// cell's estimate, 4.8 times that of the albedo.
-constexpr double kRouletteThreshold = 0.25;
-}  // namespace
-
 void trace_brdf_path(const MicrograinField& f, const MicrograinMaterials& mat, Vec3 wi, int max_order, Rng& rng,
                      BrdfAccumulator& tally, WalkCounters* counters) {
   if (counters) ++counters->paths;

@@ -4,7 +4,7 @@
 // scatters on grains (micro-BRDF of the grain) and on the base plane
 // (micro-BRDF of the base) until it leaves upward. No depth limit: unbiased
 // Russian roulette on the RGB throughput once its largest channel m falls below
-// 0.25 (survival m / 0.25).
+// kRouletteThreshold (survival m / kRouletteThreshold).
 // Every escaping path is scored once, with its scattering order, the place of
 // its first event (order-1 class 0 = grain, 1 = base) and whether it is a
 // delta lobe (only exact mirror reflections on the flat base: the base's
@@ -17,6 +17,13 @@
 #include "sim/tally/brdf_tally.h"
 
 namespace mcref {
+
+// Paths keep their weight (no roulette) while its largest channel is above
+// this. Measured on tau0 = 0.6 with Lambertian grains 0.8 on a base 0.5:
+// against roulette at every event (survival = albedo), 1.3 times as many rays
+// per path, and 1.25 times the efficiency (1 / variance x time) of a BRDF
+// cell's estimate, 4.8 times that of the albedo.
+inline constexpr double kRouletteThreshold = 0.25;
 
 struct WalkCounters {
   std::uint64_t paths = 0;
