@@ -1,12 +1,12 @@
-// sim/core: RNG streams, frames, warps, quadrature.
+// sim/core: RNG streams, frames, warps, quadrature; the chunked runner of the estimators.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
 #include <algorithm>
 #include <chrono>
-#include <thread>
 #include <cmath>
 #include <set>
+#include <thread>
 #include <vector>
 
 #include "sim/core/frame.h"
@@ -14,11 +14,10 @@
 #include "sim/core/rng.h"
 #include "sim/core/small_angle.h"
 #include "sim/core/statistics.h"
+#include "sim/core/triangle_cut.h"
 #include "sim/core/warp.h"
 #include "sim/estimators/estimator.h"
 #include "tests/models/chi2.h"
-#include "sim/core/triangle_cut.h"
-#include "sim/core/warp.h"
 
 using namespace mcref;
 
