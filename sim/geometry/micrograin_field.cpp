@@ -328,14 +328,6 @@ bool MicrograinField::visit_grains_near(double x, double y, double reach, Fn&& f
   return false;
 }
 
-void MicrograinField::for_grains_near(double x, double y, double reach,
-                                      const std::function<void(std::size_t, double)>& fn) const {
-  visit_grains_near(x, y, reach, [&](std::size_t k, double d2) {
-    fn(k, d2);
-    return false;
-  });
-}
-
 bool MicrograinField::under_grain(double x, double y) const {
   return visit_grains_near(x, y, 1.0, [](std::size_t, double d2) { return d2 < 1.0; });
 }
@@ -346,7 +338,10 @@ double MicrograinField::nearest_centre_distance(double x, double y) const {
   const double half_diagonal = 0.5 * std::hypot(side_x_, side_y_);
   for (double reach = std::max(cell_x_, cell_y_);; reach *= 2) {
     reach = std::min(reach, half_diagonal);
-    for_grains_near(x, y, reach, [&](std::size_t, double d2) { best2 = std::min(best2, d2); });
+    visit_grains_near(x, y, reach, [&](std::size_t, double d2) {
+      best2 = std::min(best2, d2);
+      return false;
+    });
     if (best2 <= reach * reach || reach >= half_diagonal) return std::sqrt(best2);
   }
 }

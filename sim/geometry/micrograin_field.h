@@ -12,7 +12,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "sim/core/rng.h"
@@ -99,11 +98,6 @@ class MicrograinField {
   bool occluded_unit(Vec3 unit_origin, Vec3 unit_direction, std::uint32_t start_grain) const;
   static constexpr std::uint32_t kNoGrain = 0xFFFFFFFFu;
 
-  // Calls fn(k, d2) for every grain whose unit-space centre lies within
-  // unit-space distance `reach` of the unit-space point (x, y) (periodic);
-  // d2 is the squared periodic distance.
-  void for_grains_near(double x, double y, double reach,
-                       const std::function<void(std::size_t, double)>& fn) const;
   // Periodic unit-space distance from (x, y) to the closest centre
   // (infinity if the tile holds no grain).
   double nearest_centre_distance(double x, double y) const;
@@ -142,6 +136,8 @@ class MicrograinField {
 
  private:
   void build_grid();
+  // Calls fn(k, d2) for the grains within unit-space distance `reach` of (x, y)
+  // (periodic; d2 the squared distance) until it returns true; returns whether it did.
   template <class Fn>
   bool visit_grains_near(double x, double y, double reach, Fn&& fn) const;
   void build_scene();
