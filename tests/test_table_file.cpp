@@ -425,4 +425,11 @@ TEST(AzimuthBins, SameBinAsAtan2) {
   EXPECT_EQ(az.bin({0, 0, 1}), 0);  // straight up: bin 0, as atan2(0, 0) = 0
   EXPECT_EQ(az.bin({-1, 0, 0}), 17);
   EXPECT_EQ(az.bin({1, 1e-300, 0}), 0);
+  // Signed zeros count as positive, as atan2 does not for -0.
+  for (const bool folded : {true, false}) {
+    const AzimuthBins a(18, 0.0, folded);
+    EXPECT_EQ(a.bin({-0.0, -0.0, -1}), 0);
+    EXPECT_EQ(a.bin({1, -0.0, 0}), 0);
+    EXPECT_EQ(a.bin({-0.0, 1, 0}), folded ? 9 : 4);
+  }
 }

@@ -30,7 +30,7 @@ void trace_brdf_path(const MicrograinField& f, const MicrograinMaterials& mat, V
     const MicroBrdfSample s = sample_micro_brdf(grain ? mat.grain : mat.base, -d, h.normal, rng);
     if (s.absorbed) return;
     throughput = throughput * s.weight;
-    delta = delta && s.delta && !grain;
+    delta = delta & s.delta & !grain;  // (no branches: grain or not is random)
     d = s.wo;
     // Unbiased Russian roulette on the largest channel, once it falls below
     // kRouletteThreshold; survivors carry that weight again.
@@ -42,7 +42,7 @@ void trace_brdf_path(const MicrograinField& f, const MicrograinMaterials& mat, V
       throughput = throughput / q;
     }
     o = h.unit_position;
-    start = grain ? h.grain : MicrograinField::kNoGrain;
+    start = h.grain;  // kNoGrain on the base
   }
 }
 

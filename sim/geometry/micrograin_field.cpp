@@ -205,7 +205,9 @@ TraceSegment MicrograinField::segment(Vec3 o, Vec3 d, double a, double inv_a, st
   s.inv_a = inv_a;
   s.wraps = wraps;
   s.travelled = travelled;
-  s.escape = d.z >= 0 && o.z >= 1;  // above every grain, going up: no ray needed
+  // Above every grain, going up: no ray needed (o.z first: nearly always
+  // false, so well predicted, unlike the random sign of d.z).
+  s.escape = o.z >= 1 && d.z >= 0;
   if (s.escape) return s;
   // Distances to the side, base or top ahead. The plane ahead is picked by
   // copysign, not by branches on the signs of d (random: mispredicted half
@@ -283,7 +285,7 @@ Hit MicrograinField::finish(const TraceSegment& first, const RTCRayHit& first_rh
     if (s->t_far == s->tz && !s->up) {
       Vec3 p = s->o + s->d * s->tz;
       p.z = 0;
-      return make_hit<kDetail>(Hit::Kind::Base, s->travelled + s->tz, p, {0, 0, 1}, 0);
+      return make_hit<kDetail>(Hit::Kind::Base, s->travelled + s->tz, p, {0, 0, 1}, kNoGrain);
     }
     if (s->t_far == s->tz || s->wraps + 1 >= kMaxWraps) break;  // the top: escape
     // Leave the tile through a side and re-enter from the opposite one.

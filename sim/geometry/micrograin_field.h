@@ -53,7 +53,7 @@ struct Hit {
   Vec3 unit_position; // the same in unit space
   Vec3 normal;        // real-space unit normal (grain: ellipsoid normal; base: +z)
   Vec3 unit_normal;   // unit-space normal (= unit-space position relative to the centre)
-  std::uint32_t grain = 0;  // index of the grain (real, not a ghost copy)
+  std::uint32_t grain = 0;  // index of the grain (real, not a ghost copy); kNoGrain on the base
 };
 
 // An Embree primitive: a grain, or a ghost copy of it across a side of the

@@ -43,11 +43,13 @@ class AzimuthBins {
     const double ax = std::fabs(x), ay = std::fabs(y);
     const double hi = std::max(ax, ay);
     const double t = hi > 0 ? std::min(ax, ay) / hi : 0;
-    double a = t * (0.25 * kPi + 0.273 * (1 - t));  // atan(t) on [0, 1]
-    if (ay > ax) a = 0.5 * kPi - a;
-    if (x < 0) a = kPi - a;
-    if (y < 0) a = 2 * kPi - a;
-    return a;
+    const double a = t * (0.25 * kPi + 0.273 * (1 - t));  // atan(t) on [0, 1]
+    // The octant's reflections by copysign, not by branches on the (random)
+    // signs: a -> pi/2 - a if ay > ax, then pi - a if x < 0, then 2pi - a if
+    // y < 0. (Adding +0 turns -0 into +0, which must count as positive.)
+    const double b = 0.25 * kPi - std::copysign(0.25 * kPi - a, ax - ay);
+    const double c = 0.5 * kPi - std::copysign(0.5 * kPi - b, x + 0.0);
+    return kPi - std::copysign(kPi - c, y + 0.0);
   }
 
   int bins_;
