@@ -9,7 +9,7 @@ void trace_brdf_path(const MicrograinField& f, const MicrograinMaterials& mat, V
                      BrdfAccumulator& tally, WalkCounters* counters) {
   if (counters) ++counters->paths;
   std::uint64_t* rays = counters ? &counters->rays : nullptr;
-  Vec3 d = -wi;
+  Vec3 d = -wi;  // not unit length after a Lambertian event (normalised where scored)
   Vec3 o = {rng.uniform() * f.unit_side_x(), rng.uniform() * f.unit_side_y(), 1.0};
   std::uint32_t start = MicrograinField::kNoGrain;
   Rgb throughput(1.0);
@@ -20,7 +20,7 @@ void trace_brdf_path(const MicrograinField& f, const MicrograinMaterials& mat, V
     // A ray leaving a grain does not hit that grain again (the field skips self-hits).
     const Hit h = f.intersect_unit(o, f.to_unit(d), start);
     if (h.kind == Hit::Kind::Escape) {
-      if (order > 0) tally.add(d, order, first_class, throughput, delta);
+      if (order > 0) tally.add(normalize(d), order, first_class, throughput, delta);
       return;
     }
     if (max_order > 0 && order >= max_order) return;

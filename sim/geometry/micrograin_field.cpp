@@ -23,22 +23,28 @@ constexpr float kSkip = 1e-4f;
 // Embree's traversal (a convex grain is not met again by a ray leaving it).
 struct LeavingContext : RTCIntersectContext {
   const GrainCopy* prims;
-  const LoggedRay* ray;
+  const Vec3* origin;
+  std::uint32_t leaving;
 };
 
 void reject_self_hit(const RTCFilterFunctionNArguments* args) {
   const auto* c = static_cast<const LeavingContext*>(args->context);
   const std::uint32_t prim = RTCHitN_primID(args->hit, args->N, 0);
-  if (c->prims[prim].owner != c->ray->leaving) return;
-  const Vec3 oc = c->ray->origin - c->prims[prim].centre;  // the copy the origin lies on, not a ghost
+  if (c->prims[prim].owner != c->leaving) return;
+  const Vec3 oc = *c->origin - c->prims[prim].centre;  // the copy the origin lies on, not a ghost
   if (std::fabs(dot(oc, oc) - 1) < 1e-6) args->valid[0] = 0;
 }
 }  // namespace
 
 // One straight piece of a trace inside the tile, up to a side, the base or
-// the top of the grain layer, and the rtcIntersect1 call it needs.
+// the top of the grain layer, and the rtcIntersect1 call it needs. The call's
+// ray is written once, where it is computed: copying it from another record
+// right before the call would read back floats still in the store buffer, in
+// pieces that straddle two stores (a failed store forward, on every ray).
 struct TraceSegment {
-  LoggedRay ray;      // the call (unless `escape`)
+  RTCRayHit rh;       // the call (unless `escape`), then Embree's answer in rh.hit and rh.ray.tfar
+  float tfar;         // the call's tfar (Embree shortens rh.ray.tfar to its hit)
+  std::uint32_t leaving;  // the grain the ray leaves (self-hit filter), or kNoGrain
   Vec3 o, d;          // unit-space origin (in the tile) and direction
   double a, inv_a;    // d . d and its inverse (sphere roots)
   double tx, ty, tz;  // to the x side, the y side, and the base (d.z < 0) or top (d.z > 0) ahead
@@ -153,28 +159,46 @@ bool MicrograinField::occluded_unit(Vec3 o, Vec3 d, std::uint32_t start_grain) c
   return trace<false>(o, d, start_grain).kind != Hit::Kind::Escape;
 }
 
-void MicrograinField::embree_intersect(const LoggedRay& r, RTCRayHit& rh) const {
-  rh.ray.org_x = r.org[0];
-  rh.ray.org_y = r.org[1];
-  rh.ray.org_z = r.org[2];
-  rh.ray.dir_x = r.dir[0];
-  rh.ray.dir_y = r.dir[1];
-  rh.ray.dir_z = r.dir[2];
-  rh.ray.tnear = r.tnear;
-  rh.ray.tfar = r.tfar;
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.ray.flags = 0;
+namespace {
+// The Embree ray of a LoggedRay-like call, reset to "no hit yet".
+void set_ray(RTCRayHit& rh, float ox, float oy, float oz, float dx, float dy, float dz, float tnear, float tfar) {
+  rh.ray.org_x = ox;
+  rh.ray.org_y = oy;
+  rh.ray.org_z = oz;
+  rh.ray.tnear = tnear;
+  rh.ray.dir_x = dx;
+  rh.ray.dir_y = dy;
+  rh.ray.dir_z = dz;
   rh.ray.time = 0;
+  rh.ray.tfar = tfar;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
+LoggedRay logged(const TraceSegment& s) {
+  const RTCRay& r = s.rh.ray;
+  return {{r.org_x, r.org_y, r.org_z}, {r.dir_x, r.dir_y, r.dir_z}, r.tnear, s.tfar, s.o, s.leaving};
+}
+}  // namespace
+
+void MicrograinField::call_embree(RTCRayHit& rh, const Vec3& origin, std::uint32_t leaving) const {
   LeavingContext context;
   rtcInitIntersectContext(&context);
-  if (r.leaving != kNoGrain) {
+  if (leaving != kNoGrain) {
     context.filter = reject_self_hit;
     context.prims = prims_.data();
-    context.ray = &r;
+    context.origin = &origin;
+    context.leaving = leaving;
   }
   rtcIntersect1(scene_, &context, &rh);
+}
+
+void MicrograinField::embree_intersect(const LoggedRay& r, RTCRayHit& rh) const {
+  set_ray(rh, r.org[0], r.org[1], r.org[2], r.dir[0], r.dir[1], r.dir[2], r.tnear, r.tfar);
+  call_embree(rh, r.origin, r.leaving);
 }
 
 // kDetail = false fills only the kind and t of the hit: no normals, no position.
@@ -220,34 +244,30 @@ TraceSegment MicrograinField::segment(Vec3 o, Vec3 d, double a, double inv_a, st
   s.t_far = std::min(std::min(s.tx, s.ty), s.tz);
   // Self-hits only on the first segment: after a wrap the ray may meet
   // its start grain again through the periodic tile.
-  s.ray = {{static_cast<float>(o.x), static_cast<float>(o.y), static_cast<float>(o.z)},
-           {static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z)},
-           0.0f,
-           static_cast<float>(s.t_far) * (1.0f + 1e-6f),
-           o,
-           wraps == 0 ? start_grain : kNoGrain};
-  if (t_ray_log) t_ray_log->push_back(s.ray);
+  s.leaving = wraps == 0 ? start_grain : kNoGrain;
+  s.tfar = static_cast<float>(s.t_far) * (1.0f + 1e-6f);
+  set_ray(s.rh, static_cast<float>(o.x), static_cast<float>(o.y), static_cast<float>(o.z), static_cast<float>(d.x),
+          static_cast<float>(d.y), static_cast<float>(d.z), 0.0f, s.tfar);
+  if (t_ray_log) t_ray_log->push_back(logged(s));
   return s;
 }
 
 template <bool kDetail>
 Hit MicrograinField::trace(Vec3 o, Vec3 d, std::uint32_t start_grain) const {
   const double a = dot(d, d);  // of the sphere roots
-  const TraceSegment s = segment(wrap_unit(o), d, a, 1 / a, start_grain, 0, 0.0);
-  RTCRayHit rh;
-  if (!s.escape) embree_intersect(s.ray, rh);
-  return finish<kDetail>(s, rh);
+  TraceSegment s = segment(wrap_unit(o), d, a, 1 / a, start_grain, 0, 0.0);
+  if (!s.escape) call_embree(s.rh, s.o, s.leaving);
+  return finish<kDetail>(s);
 }
 
 template <bool kDetail>
-Hit MicrograinField::finish(const TraceSegment& first, const RTCRayHit& first_rh) const {
+Hit MicrograinField::finish(const TraceSegment& first) const {
   // Usually the first answer decides; later segments (after a spurious hit
   // or across a side) live in `next`, so the common case copies nothing.
   const TraceSegment* s = &first;
-  const RTCRayHit* rh = &first_rh;
   TraceSegment next;
-  RTCRayHit next_rh;
   while (!s->escape) {
+    const RTCRayHit* rh = &s->rh;
     if (rh->hit.geomID != RTC_INVALID_GEOMETRY_ID) {
       // Exact root in double precision for the sphere Embree found.
       const GrainCopy& prim = prims_[rh->hit.primID];
@@ -262,13 +282,13 @@ Hit MicrograinField::finish(const TraceSegment& first, const RTCRayHit& first_rh
         // root misses, or one behind the origin (a float artefact). Step
         // past it by kSkip (unit space, ~1e-4 grain radius): an ulp-sized
         // step could crawl for ages.
-        const float t_near = rh->ray.tfar + kSkip;
+        const float t_near = rh->ray.tfar + kSkip * static_cast<float>(std::sqrt(s->inv_a));  // kSkip / |d|
         if (s != &next) next = *s;
-        next.ray.tnear = t_near;
-        if (t_ray_log) t_ray_log->push_back(next.ray);
-        embree_intersect(next.ray, next_rh);
+        const RTCRay& r = next.rh.ray;
+        set_ray(next.rh, r.org_x, r.org_y, r.org_z, r.dir_x, r.dir_y, r.dir_z, t_near, next.tfar);
+        if (t_ray_log) t_ray_log->push_back(logged(next));
+        call_embree(next.rh, next.o, next.leaving);
         s = &next;
-        rh = &next_rh;
         continue;
       }
       const double tf = rh->ray.tfar;
@@ -295,9 +315,8 @@ Hit MicrograinField::finish(const TraceSegment& first, const RTCRayHit& first_rh
     if (s->tx <= s->ty) o.x = s->d.x > 0 ? 0 : side_x_;
     if (s->ty <= s->tx) o.y = s->d.y > 0 ? 0 : side_y_;
     next = segment(o, s->d, s->a, s->inv_a, kNoGrain, s->wraps + 1, s->travelled + t_side);
-    if (!next.escape) embree_intersect(next.ray, next_rh);
+    if (!next.escape) call_embree(next.rh, next.o, next.leaving);
     s = &next;
-    rh = &next_rh;
   }
   return Hit{};  // escape
 }

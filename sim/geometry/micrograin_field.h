@@ -148,10 +148,13 @@ class MicrograinField {
   // The segment from o along d (a = d . d) after `wraps` sides and `travelled`.
   TraceSegment segment(Vec3 o, Vec3 d, double a, double inv_a, std::uint32_t start_grain, int wraps,
                        double travelled) const;
-  // The hit of a trace from its first segment and Embree's answer for it
+  // rtcIntersect1 on a prepared ray, with the self-hit filter if it leaves
+  // grain `leaving` (not kNoGrain) from the exact unit-space point `origin`.
+  void call_embree(RTCRayHit& rh, const Vec3& origin, std::uint32_t leaving) const;
+  // The hit of a trace from its first segment with Embree's answer in it
   // (calls Embree again after a spurious hit and across the tile's sides).
   template <bool kDetail>
-  Hit finish(const TraceSegment& s, const RTCRayHit& rh) const;
+  Hit finish(const TraceSegment& s) const;
 
   MicrograinGeometry geometry_;
   double rx_, ry_, c_, inv_rx_, inv_ry_, inv_c_;

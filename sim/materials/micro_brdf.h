@@ -35,13 +35,15 @@ struct MicroBrdf {
 };
 
 struct MicroBrdfSample {
-  Vec3 wo;             // world direction, pointing away from the surface
+  Vec3 wo;             // world direction, pointing away from the surface; not
+                       // unit length (lambertian: see sample_cosine_about)
   Rgb weight;          // f cos / pdf
   bool delta = false;  // an exact mirror direction
   bool absorbed = false;
 };
 
-// wi: world direction toward where the light comes from (wi . n > 0), n: unit normal.
+// wi: world direction toward where the light comes from (wi . n > 0), of any
+// length; n: unit normal.
 MicroBrdfSample sample_micro_brdf(const MicroBrdf& b, Vec3 wi, Vec3 n, Rng& rng);
 
 // Reflectance of the micro-BRDF for light from wi (energy that is reflected),
