@@ -77,8 +77,15 @@ MicrograinField::MicrograinField(const MicrograinGeometry& g, std::uint64_t seed
   // Poisson process of unit-space density rho' = -ln(1 - tau0)/pi (Eq. 13).
   Rng rng(seed);
   const std::uint64_t n = rng.poisson(g.unit_density() * side_x_ * side_y_);
+  // Centres are floats, so Embree's vertex buffer holds them exactly and a hit
+  // on a grain (not a ghost copy) needs no other record (see finish).
+  auto coordinate = [&](double side) {
+    float x = static_cast<float>(rng.uniform() * side);
+    while (!(x < side)) x = std::nextafter(x, 0.0f);
+    return static_cast<double>(x);
+  };
   centres_.resize(n);
-  for (auto& p : centres_) p = {rng.uniform() * side_x_, rng.uniform() * side_y_, 0.0};
+  for (auto& p : centres_) p = {coordinate(side_x_), coordinate(side_y_), 0.0};
   build_grid();
   build_scene();
 }
@@ -109,13 +116,15 @@ void MicrograinField::build_grid() {
 }
 
 void MicrograinField::build_scene() {
-  // Ghost copies of the grains that overlap the tile across a side, so that
-  // every grain meeting the tile's column is present inside it.
+  // The grains (primitive k = grain k), then ghost copies of those that
+  // overlap the tile across a side, so that every grain meeting the tile's
+  // column is present inside it.
+  for (std::size_t k = 0; k < centres_.size(); ++k) prims_.push_back({centres_[k], static_cast<std::uint32_t>(k)});
   for (std::size_t k = 0; k < centres_.size(); ++k) {
     for (int sx = -1; sx <= 1; ++sx)
       for (int sy = -1; sy <= 1; ++sy) {
         const Vec3 p{centres_[k].x + sx * side_x_, centres_[k].y + sy * side_y_, 0.0};
-        if (p.x > -1 && p.x < side_x_ + 1 && p.y > -1 && p.y < side_y_ + 1) {
+        if ((sx != 0 || sy != 0) && p.x > -1 && p.x < side_x_ + 1 && p.y > -1 && p.y < side_y_ + 1) {
           prims_.push_back({p, static_cast<std::uint32_t>(k)});
         }
       }
@@ -129,6 +138,7 @@ void MicrograinField::build_scene() {
     RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
                                                           4 * sizeof(float), prims_.size()));
+    vertices_ = v;
     for (std::size_t i = 0; i < prims_.size(); ++i) {
       v[4 * i + 0] = static_cast<float>(prims_[i].centre.x);
       v[4 * i + 1] = static_cast<float>(prims_[i].centre.y);
@@ -270,8 +280,13 @@ Hit MicrograinField::finish(const TraceSegment& first) const {
     const RTCRayHit* rh = &s->rh;
     if (rh->hit.geomID != RTC_INVALID_GEOMETRY_ID) {
       // Exact root in double precision for the sphere Embree found.
-      const GrainCopy& prim = prims_[rh->hit.primID];
-      const Vec3 c = prim.centre;
+      // A grain's centre is exact in Embree's vertex buffer, which Embree has
+      // just read (in the L1 cache, unlike prims_); a ghost's is in prims_.
+      const std::uint32_t id = rh->hit.primID;
+      const bool ghost = id >= centres_.size();
+      const float* v = vertices_ + 4 * static_cast<std::size_t>(id);
+      const Vec3 c = ghost ? prims_[id].centre : Vec3{v[0], v[1], 0.0};
+      const std::uint32_t owner = ghost ? prims_[id].owner : id;
       const Vec3 oc = s->o - c;
       const double b = dot(oc, s->d), cc = dot(oc, oc) - 1;
       const double disc = b * b - s->a * cc;
@@ -299,7 +314,7 @@ Hit MicrograinField::finish(const TraceSegment& first) const {
       if (t < s->tz || s->up) {
         const Vec3 p = s->o + s->d * t;
         // The unit normal is p - c, unit length up to rounding: p is on the unit sphere.
-        return make_hit<kDetail>(Hit::Kind::Grain, s->travelled + t, p, p - c, prim.owner);
+        return make_hit<kDetail>(Hit::Kind::Grain, s->travelled + t, p, p - c, owner);
       }
     }
     if (s->t_far == s->tz && !s->up) {

@@ -1,6 +1,7 @@
 #pragma once
 // A random micrograin field (LRPB23 Sec. 3): grain centres form a Poisson
-// process on a square periodic tile of the plane z = 0; every grain is the
+// process on a square periodic tile of the plane z = 0 (unit-space
+// coordinates rounded to float, exact in Embree's vertex buffer); every grain is the
 // upper half (z >= 0) of an ellipsoid with horizontal semi-axes r_x, r_y and
 // vertical semi-axis c. The base plane z = 0 lies below.
 //
@@ -161,7 +162,8 @@ class MicrograinField {
   bool spheres_;  // r_x = r_y = c: grains are spheres in real space too
   double side_, side_x_, side_y_;
   std::vector<Vec3> centres_;          // real grains, unit space
-  std::vector<GrainCopy> prims_;  // Embree primitive -> its grain copy
+  std::vector<GrainCopy> prims_;  // Embree primitive -> its grain copy (grains first, then ghosts)
+  const float* vertices_ = nullptr;  // Embree's vertex buffer (x, y, z, radius per primitive)
   // Uniform grid over the unit tile for neighbour queries.
   int grid_nx_ = 1, grid_ny_ = 1;
   double cell_x_ = 1, cell_y_ = 1;
