@@ -20,7 +20,7 @@ void trace_brdf_path(const MicrograinField& f, const MicrograinMaterials& mat, V
     // A ray leaving a grain does not hit that grain again (the field skips self-hits).
     const Hit h = f.intersect_unit(o, f.to_unit(d), start);
     if (h.kind == Hit::Kind::Escape) {
-      if (order > 0) tally.add(normalize(d), order, first_class, throughput, delta);
+      if (order > 0) tally.add(d * (1 / length(d)), order, first_class, throughput, delta);
       return;
     }
     if (max_order > 0 && order >= max_order) return;
