@@ -59,23 +59,19 @@ MicroBrdfSample diffuse_under_dielectric(const MicroBrdf& b, Rng& rng) {
 
 MicroBrdfSample sample_micro_brdf(const MicroBrdf& b, Vec3 wi, Vec3 n, Rng& rng) {
   MicroBrdfSample s;
-  switch (b.type) {  // the two that ignore wi
-    case MicroBrdf::Type::Black:
-      s.absorbed = true;
-      return s;
-    case MicroBrdf::Type::Lambertian:
-      s.wo = sample_cosine_about(n, rng);  // unnormalised: no frame, no division
-      s.weight = b.albedo;
-      return s;
-    default:
-      break;
+  if (b.type == MicroBrdf::Type::Lambertian) {  // ignores wi
+    s.wo = sample_cosine_about(n, rng);  // unnormalised: no frame, no division
+    s.weight = b.albedo;
+    return s;
   }
   wi = normalize(wi);
   const double c = std::clamp(dot(wi, n), 0.0, 1.0);
   switch (b.type) {
     case MicroBrdf::Type::Black:
+      s.absorbed = true;
+      return s;
     case MicroBrdf::Type::Lambertian:
-      break;
+      break;  // (above)
     case MicroBrdf::Type::Conductor:
       s.wo = mirror(wi, n);
       s.weight = fresnel_conductor(c, b.eta, b.kappa);
