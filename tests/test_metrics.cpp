@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "sim/core/fp_mode.h"
 #include "sim/core/rng.h"
 #include "sim/core/vec.h"
-#include "sim/core/fp_mode.h"
 #include "validate/metrics.h"
 
 using namespace mcref;

@@ -59,7 +59,8 @@ struct Hit {
 
 // An Embree primitive: a grain, or a ghost copy of it across a side of the
 // tile; its exact unit-space centre and the index of the real grain, in one
-// cache line (both are read after every hit).
+// cache line (both are read together: by the self-hit filter, and after a hit
+// on a ghost; a hit on a grain reads Embree's vertex buffer instead).
 struct alignas(32) GrainCopy {
   Vec3 centre;
   std::uint32_t owner;
