@@ -43,7 +43,8 @@ void reject_self_hit(const RTCFilterFunctionNArguments* args) {
 // pieces that straddle two stores (a failed store forward, on every ray).
 struct TraceSegment {
   RTCRayHit rh;       // the call (unless `escape`), then Embree's answer in rh.hit and rh.ray.tfar
-  float tfar;         // the call's tfar (Embree shortens rh.ray.tfar to its hit)
+  float tfar;         // the call's tfar (Embree shortens rh.ray.tfar to its hit): the base or top
+  float side_far;     // hits beyond this float distance lie past a side: not in this segment
   std::uint32_t leaving;  // the grain the ray leaves (self-hit filter), or kNoGrain
   Vec3 o, d;          // unit-space origin (in the tile) and direction
   double a, inv_a;    // d . d and its inverse (sphere roots)
@@ -247,17 +248,21 @@ TraceSegment MicrograinField::segment(Vec3 o, Vec3 d, double a, double inv_a, st
   // copysign, not by branches on the signs of d (random: mispredicted half
   // of the time): h + copysign(h, d) is exactly 2h or 0.
   auto ahead = [](double half, double d) { return half + std::copysign(half, d); };
-  s.tx = d.x != 0 ? (ahead(0.5 * side_x_, d.x) - o.x) / d.x : kInf;
-  s.ty = d.y != 0 ? (ahead(0.5 * side_y_, d.y) - o.y) / d.y : kInf;
   s.tz = d.z != 0 ? (ahead(0.5, d.z) - o.z) / d.z : kInf;
   s.up = d.z > 0;
-  s.t_far = std::min(std::min(s.tx, s.ty), s.tz);
   // Self-hits only on the first segment: after a wrap the ray may meet
   // its start grain again through the periodic tile.
   s.leaving = wraps == 0 ? start_grain : kNoGrain;
-  s.tfar = static_cast<float>(s.t_far) * (1.0f + 1e-6f);
+  // Embree's tfar is the base or top only; a hit past a side is discarded
+  // after the call (finish). So the sides' divisions are not on the way
+  // from the last hit to this call.
+  s.tfar = static_cast<float>(s.tz) * (1.0f + 1e-6f);
   set_ray(s.rh, static_cast<float>(o.x), static_cast<float>(o.y), static_cast<float>(o.z), static_cast<float>(d.x),
           static_cast<float>(d.y), static_cast<float>(d.z), 0.0f, s.tfar);
+  s.tx = d.x != 0 ? (ahead(0.5 * side_x_, d.x) - o.x) / d.x : kInf;
+  s.ty = d.y != 0 ? (ahead(0.5 * side_y_, d.y) - o.y) / d.y : kInf;
+  s.t_far = std::min(std::min(s.tx, s.ty), s.tz);
+  s.side_far = static_cast<float>(std::min(s.tx, s.ty)) * (1.0f + 1e-6f);
   if (t_ray_log) t_ray_log->push_back(logged(s));
   return s;
 }
@@ -278,7 +283,7 @@ Hit MicrograinField::finish(const TraceSegment& first) const {
   TraceSegment next;
   while (!s->escape) {
     const RTCRayHit* rh = &s->rh;
-    if (rh->hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+    if (rh->hit.geomID != RTC_INVALID_GEOMETRY_ID && rh->ray.tfar <= s->side_far) {
       // Exact root in double precision for the sphere Embree found.
       // A grain's centre is exact in Embree's vertex buffer, which Embree has
       // just read (in the L1 cache, unlike prims_); a ghost's is in prims_.
