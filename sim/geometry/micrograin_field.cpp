@@ -231,8 +231,13 @@ template <bool kDetail>
   }
 }
 
-TraceSegment MicrograinField::segment(Vec3 o, Vec3 d, double a, double inv_a, std::uint32_t start_grain,
-                                      int wraps, double travelled) const {
+// Inlined into the trace (its first segment, on every ray); the segments
+// after a side come from wrap_segment, out of line, so that the hot loop holds
+// one copy. Measured (bench_micrograin_transport walk): about 2 points less
+// walk overhead than out of line everywhere; inlined at both calls, 5 more.
+[[gnu::always_inline]] inline TraceSegment MicrograinField::segment(Vec3 o, Vec3 d, double a, double inv_a,
+                                                                    std::uint32_t start_grain, int wraps,
+                                                                    double travelled) const {
   TraceSegment s;
   s.o = o;
   s.d = d;
@@ -265,6 +270,11 @@ TraceSegment MicrograinField::segment(Vec3 o, Vec3 d, double a, double inv_a, st
   s.side_far = static_cast<float>(std::min(s.tx, s.ty)) * (1.0f + 1e-6f);
   if (t_ray_log) t_ray_log->push_back(logged(s));
   return s;
+}
+
+[[gnu::noinline]] TraceSegment MicrograinField::wrap_segment(Vec3 o, Vec3 d, double a, double inv_a, int wraps,
+                                                             double travelled) const {
+  return segment(o, d, a, inv_a, kNoGrain, wraps, travelled);
 }
 
 template <bool kDetail>
@@ -334,7 +344,7 @@ Hit MicrograinField::finish(const TraceSegment& first) const {
     // (No wrap_unit here: it would map side_x back to 0 and stall the ray.)
     if (s->tx <= s->ty) o.x = s->d.x > 0 ? 0 : side_x_;
     if (s->ty <= s->tx) o.y = s->d.y > 0 ? 0 : side_y_;
-    next = segment(o, s->d, s->a, s->inv_a, kNoGrain, s->wraps + 1, s->travelled + t_side);
+    next = wrap_segment(o, s->d, s->a, s->inv_a, s->wraps + 1, s->travelled + t_side);
     if (!next.escape) call_embree(next.rh, next.o, next.leaving);
     s = &next;
   }

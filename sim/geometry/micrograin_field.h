@@ -150,6 +150,8 @@ class MicrograinField {
   // The segment from o along d (a = d . d) after `wraps` sides and `travelled`.
   TraceSegment segment(Vec3 o, Vec3 d, double a, double inv_a, std::uint32_t start_grain, int wraps,
                        double travelled) const;
+  // The same for the segment after a side (no start grain), out of line.
+  TraceSegment wrap_segment(Vec3 o, Vec3 d, double a, double inv_a, int wraps, double travelled) const;
   // rtcIntersect1 on a prepared ray, with the self-hit filter if it leaves
   // grain `leaving` (not kNoGrain) from the exact unit-space point `origin`.
   void call_embree(RTCRayHit& rh, const Vec3& origin, std::uint32_t leaving) const;
