@@ -189,9 +189,10 @@ void set_ray(RTCRayHit& rh, float ox, float oy, float oz, float dx, float dy, fl
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
-LoggedRay logged(const TraceSegment& s) {
+// Out of line: the hot loop keeps only the test of t_ray_log.
+[[gnu::noinline]] void log_ray(const TraceSegment& s) {
   const RTCRay& r = s.rh.ray;
-  return {{r.org_x, r.org_y, r.org_z}, {r.dir_x, r.dir_y, r.dir_z}, r.tnear, s.tfar, s.o, s.leaving};
+  t_ray_log->push_back({{r.org_x, r.org_y, r.org_z}, {r.dir_x, r.dir_y, r.dir_z}, r.tnear, s.tfar, s.o, s.leaving});
 }
 }  // namespace
 
@@ -268,7 +269,7 @@ template <bool kDetail>
   s.ty = d.y != 0 ? (ahead(0.5 * side_y_, d.y) - o.y) / d.y : kInf;
   s.t_far = std::min(std::min(s.tx, s.ty), s.tz);
   s.side_far = static_cast<float>(std::min(s.tx, s.ty)) * (1.0f + 1e-6f);
-  if (t_ray_log) t_ray_log->push_back(logged(s));
+  if (t_ray_log) log_ray(s);
   return s;
 }
 
@@ -316,7 +317,7 @@ Hit MicrograinField::finish(const TraceSegment& first) const {
         if (s != &next) next = *s;
         const RTCRay& r = next.rh.ray;
         set_ray(next.rh, r.org_x, r.org_y, r.org_z, r.dir_x, r.dir_y, r.dir_z, t_near, next.tfar);
-        if (t_ray_log) t_ray_log->push_back(logged(next));
+        if (t_ray_log) log_ray(next);
         call_embree(next.rh, next.o, next.leaving);
         s = &next;
         continue;
