@@ -49,7 +49,7 @@ struct TraceSegment {
   Vec3 o, d;          // unit-space origin (in the tile) and direction
   double a, inv_a;    // d . d and its inverse (sphere roots)
   double tx, ty, tz;  // to the x side, the y side, and the base (d.z < 0) or top (d.z > 0) ahead
-  double t_far;       // the nearest of them
+  double t_side;      // the nearer side: min(tx, ty)
   bool up;            // d.z > 0
   double travelled;   // t before this segment (earlier segments, across wraps)
   int wraps;          // sides crossed before this segment
@@ -267,8 +267,8 @@ template <bool kDetail>
           static_cast<float>(d.y), static_cast<float>(d.z), 0.0f, s.tfar);
   s.tx = d.x != 0 ? (ahead(0.5 * side_x_, d.x) - o.x) / d.x : kInf;
   s.ty = d.y != 0 ? (ahead(0.5 * side_y_, d.y) - o.y) / d.y : kInf;
-  s.t_far = std::min(std::min(s.tx, s.ty), s.tz);
-  s.side_far = static_cast<float>(std::min(s.tx, s.ty)) * (1.0f + 1e-6f);
+  s.t_side = std::min(s.tx, s.ty);
+  s.side_far = static_cast<float>(s.t_side) * (1.0f + 1e-6f);
   if (t_ray_log) log_ray(s);
   return s;
 }
@@ -333,19 +333,18 @@ Hit MicrograinField::finish(const TraceSegment& first) const {
         return make_hit<kDetail>(Hit::Kind::Grain, s->travelled + t, p, p - c, owner);
       }
     }
-    if (s->t_far == s->tz && !s->up) {
+    if (s->tz <= s->t_side && !s->up) {
       Vec3 p = s->o + s->d * s->tz;
       p.z = 0;
       return make_hit<kDetail>(Hit::Kind::Base, s->travelled + s->tz, p, {0, 0, 1}, kNoGrain);
     }
-    if (s->t_far == s->tz || s->wraps + 1 >= kMaxWraps) break;  // the top: escape
+    if (s->tz <= s->t_side || s->wraps + 1 >= kMaxWraps) break;  // the top: escape
     // Leave the tile through a side and re-enter from the opposite one.
-    const double t_side = std::min(s->tx, s->ty);
-    Vec3 o = s->o + s->d * t_side;
+    Vec3 o = s->o + s->d * s->t_side;
     // (No wrap_unit here: it would map side_x back to 0 and stall the ray.)
     if (s->tx <= s->ty) o.x = s->d.x > 0 ? 0 : side_x_;
     if (s->ty <= s->tx) o.y = s->d.y > 0 ? 0 : side_y_;
-    next = wrap_segment(o, s->d, s->a, s->inv_a, s->wraps + 1, s->travelled + t_side);
+    next = wrap_segment(o, s->d, s->a, s->inv_a, s->wraps + 1, s->travelled + s->t_side);
     if (!next.escape) call_embree(next.rh, next.o, next.leaving);
     s = &next;
   }

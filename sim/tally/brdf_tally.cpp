@@ -32,8 +32,7 @@ BrdfAccumulator::BrdfAccumulator(const BrdfLayout& layout, double phi_i, std::ve
       phi_bins_(layout.phi_bins, phi_i, layout.folded) {}
 
 void BrdfAccumulator::add(Vec3 wo, int order, int order1_class, const Rgb& weight, bool delta) {
-  int c = classes_ + std::min(order, 4) - 2;
-  c = order <= 1 ? order1_class : c;  // (a select, not a branch: the order is random)
+  const int c = order <= 1 ? order1_class : classes_ + std::min(order, 4) - 2;
   const int h = wo.z >= 0 ? 0 : 1;
   if (h == 1 && !layout_.transmission) return;
   if (order == 0) {  // unscattered: a delta lobe in the total, in no component
