@@ -3,14 +3,14 @@
 #include <cmath>
 #include <cstdio>
 
-#include "sim/core/fp_mode.h"
-#include "sim/core/statistics.h"
+#include "models/core/fp_mode.h"
+#include "models/core/statistics.h"
 
 namespace mcref {
 
 Comparison compare(const std::vector<double>& sim, const std::vector<double>& se, const std::vector<double>& model,
                    long long batches, const std::vector<double>& model_se) {
-  const IeeeDenormals ieee;  // the same z and p-value on every thread (sim/core/fp_mode.h)
+  const IeeeDenormals ieee;  // the same z and p-value on every thread (models/core/fp_mode.h)
   Comparison c;
   c.z.assign(sim.size(), NAN);
   const double nu = static_cast<double>(batches - 1);

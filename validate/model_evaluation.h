@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/config/experiment.h"
+#include "sim/experiment/experiment.h"
 #include "sim/tally/table.h"
 
 namespace mcref {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/io/table_file.h"
+#include "sim/hdf5/table_file.h"
 #include "validate/metrics.h"
 
 namespace mcref {

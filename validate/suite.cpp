@@ -12,9 +12,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "sim/config/toml_reader.h"
-#include "sim/io/table_file.h"
-#include "sim/run/simulate.h"
+#include "sim/experiment/simulate.h"
+#include "sim/experiment/toml_reader.h"
+#include "sim/hdf5/table_file.h"
 #include "sim/tally/brdf_tally.h"
 #include "validate/metrics.h"
 #include "validate/model_evaluation.h"

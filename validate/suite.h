@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/config/experiment.h"
+#include "sim/experiment/experiment.h"
 
 namespace mcref {
 

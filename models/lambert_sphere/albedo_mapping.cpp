@@ -3,10 +3,10 @@
 #include <cmath>
 #include <vector>
 
+#include "models/core/quadrature.h"
+#include "models/core/vec.h"
 #include "models/lambert_sphere/fourier_modes.h"
 #include "models/lambert_sphere/reference_brdf.h"
-#include "sim/core/quadrature.h"
-#include "sim/core/vec.h"
 
 namespace mcref::lambert_sphere {
 

@@ -22,9 +22,9 @@
 // grazing mirror side, from the H^(0) fit); all ingredients exact, f_m^(2) = 0: 1 %.
 #include <memory>
 
+#include "models/core/vec.h"
 #include "models/lambert_sphere/fourier_modes.h"
 #include "models/radiative_transfer/h_function.h"
-#include "sim/core/vec.h"
 
 namespace mcref::lambert_sphere {
 

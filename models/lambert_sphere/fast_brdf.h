@@ -6,7 +6,7 @@
 // scattering (Eq. 10). sr^-1 without the cosine; phi = phi_o - phi_i in
 // [-pi, pi], phi = 0 back toward the light (DESIGN.md). At S = 0 the middle
 // term's limit 0 is used (acos(S)/S -> inf).
-#include "sim/core/vec.h"
+#include "models/core/vec.h"
 
 namespace mcref::lambert_sphere {
 

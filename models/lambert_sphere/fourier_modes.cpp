@@ -3,10 +3,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "models/core/quadrature.h"
+#include "models/core/vec.h"
 #include "models/lambert_sphere/h_functions.h"
 #include "models/lambert_sphere/phase_function.h"
-#include "sim/core/quadrature.h"
-#include "sim/core/vec.h"
 
 namespace mcref::lambert_sphere {
 

@@ -6,10 +6,10 @@
 #include <utility>
 #include <vector>
 
+#include "models/core/vec.h"
 #include "models/lambert_sphere/h_functions.h"
 #include "models/lambert_sphere/phase_function.h"
 #include "models/radiative_transfer/three_term_half_space.h"
-#include "sim/core/vec.h"
 
 namespace mcref::lambert_sphere {
 

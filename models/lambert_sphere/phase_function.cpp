@@ -3,8 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "sim/core/quadrature.h"
-#include "sim/core/vec.h"
+#include "models/core/quadrature.h"
+#include "models/core/vec.h"
 
 namespace mcref::lambert_sphere {
 

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
+#include "models/core/frame.h"
 #include "models/lambert_sphere/phase_function.h"
-#include "sim/core/frame.h"
 
 namespace mcref::lambert_sphere {
 

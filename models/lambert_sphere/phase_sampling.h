@@ -4,7 +4,7 @@
 // All functions here are about mu, the cosine between the incoming propagation
 // direction and the scattered direction (see phase_function.h); the azimuth
 // about the propagation direction is uniform.
-#include "sim/core/vec.h"
+#include "models/core/vec.h"
 
 namespace mcref::lambert_sphere {
 

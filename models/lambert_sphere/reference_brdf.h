@@ -8,8 +8,8 @@
 // parts. This is what d'Eon's Eq. 11-12 approximate, with the three-term
 // truncation kept for multiple scattering only; include_second_mode = false
 // drops m = 2 as Eq. 21 does. Conventions as in brdf.h. c in [0, 1).
+#include "models/core/vec.h"
 #include "models/radiative_transfer/three_term_half_space.h"
-#include "sim/core/vec.h"
 
 namespace mcref::lambert_sphere {
 

@@ -5,7 +5,7 @@
 // viewer) both point away from the surface, z is the macro normal; mu = cosines.
 // phi = phi_o - phi_i: phi = 0 back toward the light, phi = pi the mirror side
 // (DESIGN.md; d'Eon uses the same, see fourier_modes.h).
-#include "sim/core/vec.h"
+#include "models/core/vec.h"
 
 namespace mcref::lambert_sphere {
 

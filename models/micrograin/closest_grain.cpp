@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "sim/core/vec.h"
+#include "models/core/vec.h"
 
 namespace mcref::micrograin {
 

@@ -4,7 +4,7 @@
 // alternative of LRPB23 Sec. 5.2.
 //
 // Ranges: alpha, alpha_x, alpha_y > 0; theta in [0, pi/2]; m a unit vector.
-#include "sim/core/vec.h"
+#include "models/core/vec.h"
 
 namespace mcref::micrograin {
 

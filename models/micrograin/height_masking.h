@@ -6,8 +6,8 @@
 // h is the UNIT-SPACE height in [0, 1] (for a grain point of real normal m,
 // h = unit_height(f, m) = m'.z). Ranges: f.tau0 in (0, 1), beta_x, beta_y > 0,
 // i.z > 0.
+#include "models/core/vec.h"
 #include "models/micrograin/grain_field.h"
-#include "sim/core/vec.h"
 
 namespace mcref::micrograin {
 

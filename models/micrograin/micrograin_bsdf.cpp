@@ -4,14 +4,14 @@
 #include <cmath>
 #include <vector>
 
-#include "models/micrograin/fresnel.h"
+#include "models/core/quadrature.h"
+#include "models/microfacet/fresnel.h"
 #include "models/micrograin/ggx.h"
 #include "models/micrograin/height_masking.h"
 #include "models/micrograin/ndf.h"
 #include "models/micrograin/smith_lambda.h"
 #include "models/micrograin/unit_space.h"
 #include "models/micrograin/visible_filling_factor.h"
-#include "sim/core/quadrature.h"
 
 namespace mcref::micrograin {
 

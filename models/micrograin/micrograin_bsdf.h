@@ -22,12 +22,12 @@
 // i and toward o are independent at a given height), and
 // V_p(i, o) = (1 - tau0) V(i) V(o), V(d) = (1 - tau+(d)) / (1 - tau0), which
 // makes V_p f_B identical to LRPB23's (1 - w+) f^B.
+#include "models/core/vec.h"
 #include "models/micrograin/grain_field.h"
-#include "sim/core/vec.h"
 
 namespace mcref::micrograin {
 
-// A micro-BRDF, one colour channel (mirrors sim/materials/micro_brdf.h).
+// A micro-BRDF, one colour channel (mirrors sim/micrograin/micro_brdf.h).
 struct MicroSurface {
   enum class Type { Black, Lambertian, Conductor, RoughConductor, DiffuseSpecular };
   Type type = Type::Lambertian;

@@ -5,8 +5,8 @@
 //
 // Ranges: tau0 in (0, 1) (tau0 -> 0 gives GGX; tau0 == 0 returns that limit);
 // beta, beta_x, beta_y > 0; theta in [0, pi/2]; m a unit vector (D = 0 for m.z <= 0).
+#include "models/core/vec.h"
 #include "models/micrograin/grain_field.h"
-#include "sim/core/vec.h"
 
 namespace mcref::micrograin {
 

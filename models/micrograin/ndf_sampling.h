@@ -10,8 +10,8 @@
 // which is what sample_ndf_theta implements.
 //
 // Ranges: tau0 in (0, 1); beta, beta_x, beta_y > 0; uniforms u, u1, u2 in [0, 1).
+#include "models/core/vec.h"
 #include "models/micrograin/grain_field.h"
-#include "sim/core/vec.h"
 
 namespace mcref::micrograin {
 

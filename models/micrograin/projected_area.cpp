@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sim/core/quadrature.h"
+#include "models/core/quadrature.h"
 
 namespace mcref::micrograin {
 

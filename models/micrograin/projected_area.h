@@ -8,7 +8,7 @@
 // All functions here are in the unit space (grains are unit hemispheres); map
 // real directions with to_unit_direction first. Ranges: theta_i in [0, pi/2)
 // (polar angle of the unit-space direction), h in [0, 1].
-#include "sim/core/vec.h"
+#include "models/core/vec.h"
 
 namespace mcref::micrograin {
 

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "models/core/quadrature.h"
 #include "models/micrograin/ggx.h"
 #include "models/micrograin/ndf.h"
 #include "models/micrograin/unit_space.h"
-#include "sim/core/quadrature.h"
 
 namespace mcref::micrograin {
 

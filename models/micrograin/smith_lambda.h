@@ -23,8 +23,8 @@
 // Isotropic: these use f.beta_x (require beta_x == beta_y), except the Vec3
 // overload of lambda_quadrature. Ranges: tau0 in (0, 1), beta > 0,
 // theta in [0, pi/2) (Lambda(0) = 0); k, n >= 0.
+#include "models/core/vec.h"
 #include "models/micrograin/grain_field.h"
-#include "sim/core/vec.h"
 
 namespace mcref::micrograin {
 

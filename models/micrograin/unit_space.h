@@ -10,8 +10,8 @@
 //
 // Inputs: unit vectors (any hemisphere; the maps keep the sign of z and the
 // azimuth quadrant); fields with beta_x, beta_y > 0.
+#include "models/core/vec.h"
 #include "models/micrograin/grain_field.h"
-#include "sim/core/vec.h"
 
 namespace mcref::micrograin {
 

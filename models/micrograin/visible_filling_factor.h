@@ -9,8 +9,8 @@
 //
 // Ranges: tau0 in (0, 1); beta > 0; theta in [0, pi/2) (the limit pi/2 gives 1);
 // directions unit length with d.z > 0.
+#include "models/core/vec.h"
 #include "models/micrograin/grain_field.h"
-#include "sim/core/vec.h"
 
 namespace mcref::micrograin {
 

@@ -7,8 +7,8 @@
 //
 // Ranges: tau0 in (0, 1); beta_x, beta_y > 0; i a unit direction with i.z > 0
 // (real or unit space as named); m a unit normal (D_v = 0 if m.z <= 0 or i.m <= 0).
+#include "models/core/vec.h"
 #include "models/micrograin/grain_field.h"
-#include "sim/core/vec.h"
 
 namespace mcref::micrograin {
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "models/core/small_angle.h"
 #include "models/micrograin/projected_area.h"
 #include "models/micrograin/unit_space.h"
-#include "sim/core/small_angle.h"
 
 namespace mcref::micrograin {
 

@@ -11,7 +11,7 @@
 //
 // phi given theta (Sec. 4.2, Listing 3): a tent approximation of the
 // conditional pdf (Eq. 28–31) is sampled with one uniform and mapped through
-// the triangle-cut parameterisation (Heitz 2020; sim/core/triangle_cut.h)
+// the triangle-cut parameterisation (Heitz 2020; models/core/triangle_cut.h)
 // with a second one: exact, no rejection, no iteration.
 // Notes on the printed formulas: the denominators of Eq. 22, 26 and 27 print
 // phi_i where the tent's bound phi_q is meant and lack a factor sin theta_i';
@@ -24,9 +24,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "models/core/triangle_cut.h"
+#include "models/core/vec.h"
 #include "models/micrograin/grain_field.h"
-#include "sim/core/triangle_cut.h"
-#include "sim/core/vec.h"
 
 namespace mcref::micrograin {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "sim/core/vec.h"
+#include "models/core/vec.h"
 
 namespace mcref::radiative_transfer {
 

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "sim/core/frame.h"
-#include "sim/core/warp.h"
+#include "models/core/frame.h"
+#include "models/core/warp.h"
 
 namespace mcref::sggx {
 

@@ -6,8 +6,8 @@
 // wo toward where it goes, both away from the scattering point. The scattering
 // angle is between the propagation directions -wi and wo:
 //   cos(theta) = dot(-wi, wo);  g > 0 means forward scattering (wo near -wi).
+#include "models/core/vec.h"
 #include "models/sggx/phase_sample.h"
-#include "sim/core/vec.h"
 
 namespace mcref::sggx {
 

@@ -1,7 +1,7 @@
 #pragma once
 // A small 3x3 matrix for SGGX matrices S (symmetric positive definite) and the
 // rotations/factors built from them. Row-major, double precision.
-#include "sim/core/vec.h"
+#include "models/core/vec.h"
 
 namespace mcref::sggx {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Result of sampling a phase function (pbrt-v4 style "optional sample").
-#include "sim/core/vec.h"
+#include "models/core/vec.h"
 
 namespace mcref::sggx {
 

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "sim/core/frame.h"
-#include "sim/core/warp.h"
+#include "models/core/frame.h"
+#include "models/core/warp.h"
 
 namespace mcref::sggx {
 

@@ -9,8 +9,8 @@
 // (e.g. S = I gives D = 1/pi and \int D dm = 4). The visible normal density
 //   D_w(m) = <w.m>^+ D(m) / sigma(w)
 // integrates to 1 over the sphere.
+#include "models/core/vec.h"
 #include "models/sggx/mat3.h"
-#include "sim/core/vec.h"
 
 namespace mcref::sggx {
 

@@ -7,7 +7,7 @@
 #include <set>
 #include <sstream>
 
-#include "sim/config/toml_reader.h"
+#include "sim/experiment/toml_reader.h"
 
 namespace mcref {
 

@@ -6,8 +6,8 @@
 #include <limits>
 #include <sstream>
 
-#include "sim/config/config_error.h"
-#include "sim/core/rng.h"
+#include "models/core/rng.h"
+#include "sim/experiment/config_error.h"
 
 namespace mcref {
 
@@ -33,7 +33,7 @@ bool parse_index(const std::string& s, std::size_t& idx) {
 }
 
 // Sets `value` at a dotted key path, with the semantics of --set
-// (sim/config/toml_reader.h apply_override): missing tables are created,
+// (sim/experiment/toml_reader.h apply_override): missing tables are created,
 // array elements are addressed by index.
 void set_key(toml::table& root, const std::string& path, const toml::node& value, const std::string& file) {
   const std::vector<std::string> parts = split_path(path);

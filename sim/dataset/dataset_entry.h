@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/config/experiment.h"
 #include "sim/dataset/dataset_config.h"
+#include "sim/experiment/experiment.h"
 
 namespace mcref {
 

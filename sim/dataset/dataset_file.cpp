@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "sim/config/config_error.h"
-#include "sim/io/h5_util.h"
-#include "sim/io/table_group.h"
-#include "sim/io/table_file.h"
+#include "sim/experiment/config_error.h"
+#include "sim/hdf5/h5_util.h"
+#include "sim/hdf5/table_group.h"
+#include "sim/hdf5/table_file.h"
 
 namespace mcref {
 

@@ -18,7 +18,7 @@
 //   /parameters/labels/<column>   string: labels of a categorical column
 //   /entries/<index>/       attributes index, seed, assignments, config (the entry's
 //                           effective experiment); one group per table in the
-//                           layout of sim/io/table_file.h (value, stderr, sum,
+//                           layout of sim/hdf5/table_file.h (value, stderr, sum,
 //                           sum_sq, axes as dimension scales, <axis>_edges)
 // No wall-clock dates nor command lines are stored and object time tracking
 // is off, so a file's bytes are a function of its content; the writer takes

@@ -5,11 +5,11 @@
 #include <filesystem>
 #include <memory>
 
-#include "sim/config/config_error.h"
 #include "sim/dataset/dataset_entry.h"
-#include "sim/io/table_file.h"
-#include "sim/run/progress.h"
-#include "sim/run/simulate.h"
+#include "sim/experiment/config_error.h"
+#include "sim/experiment/simulate.h"
+#include "sim/hdf5/table_file.h"
+#include "sim/parallel/progress.h"
 
 namespace mcref {
 

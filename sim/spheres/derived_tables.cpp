@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "sim/core/quadrature.h"
-#include "sim/core/vec.h"
+#include "models/core/quadrature.h"
+#include "models/core/vec.h"
 
 namespace mcref {
 

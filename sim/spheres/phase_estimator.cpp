@@ -1,7 +1,7 @@
 // phase: parallel rays on one Lambertian sphere, one bounce, histogram of the
 // deflection cosine mu = d_in . d_out (d'Eon 2021, Eq. 1 derived from geometry).
-#include "sim/core/frame.h"
-#include "sim/core/warp.h"
+#include "models/core/frame.h"
+#include "models/core/warp.h"
 #include "sim/spheres/sphere_estimators.h"
 #include "sim/spheres/sphere_field.h"
 

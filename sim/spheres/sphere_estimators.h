@@ -9,8 +9,8 @@
 // deterministic chunks (run_chunks), so tables do not depend on thread count.
 #include <vector>
 
-#include "sim/config/experiment.h"
-#include "sim/estimators/estimator.h"
+#include "sim/experiment/experiment.h"
+#include "sim/parallel/run_chunks.h"
 #include "sim/tally/brdf_tally.h"
 #include "sim/tally/table.h"
 

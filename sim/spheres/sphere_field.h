@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sim/core/vec.h"
+#include "models/core/vec.h"
 
 namespace mcref {
 

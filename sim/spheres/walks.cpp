@@ -2,9 +2,9 @@
 
 #include <cmath>
 
+#include "models/core/frame.h"
+#include "models/core/warp.h"
 #include "models/lambert_sphere/phase_sampling.h"
-#include "sim/core/frame.h"
-#include "sim/core/warp.h"
 #include "sim/spheres/sphere_field.h"
 
 namespace mcref {

@@ -10,9 +10,9 @@
 // surviving weight's max channel is 1), and tally escaping light into a
 // BrdfAccumulator (order-1 class 0 = "sphere") and the energy leaving through
 // the bottom of the slab into `transmitted`.
-#include "sim/core/rgb.h"
-#include "sim/core/rng.h"
-#include "sim/core/vec.h"
+#include "models/core/rgb.h"
+#include "models/core/rng.h"
+#include "models/core/vec.h"
 #include "sim/tally/brdf_tally.h"
 
 namespace mcref {

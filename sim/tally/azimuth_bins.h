@@ -9,7 +9,7 @@
 #include <cmath>
 #include <vector>
 
-#include "sim/core/vec.h"
+#include "models/core/vec.h"
 
 namespace mcref {
 

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/core/rgb.h"
-#include "sim/core/vec.h"
+#include "models/core/rgb.h"
+#include "models/core/vec.h"
 #include "sim/tally/azimuth_bins.h"
 #include "sim/tally/table.h"
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "sim/core/statistics.h"
+#include "models/core/statistics.h"
 
 namespace mcref {
 

@@ -38,9 +38,9 @@
 #include <malloc.h>
 #include <unistd.h>
 
-#include "sim/core/vec.h"
-#include "sim/estimators/estimator.h"
-#include "sim/geometry/micrograin_field.h"
+#include "models/core/vec.h"
+#include "sim/micrograin/estimator.h"
+#include "sim/micrograin/micrograin_field.h"
 
 namespace {
 

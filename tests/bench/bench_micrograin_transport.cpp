@@ -4,7 +4,7 @@
 //    sampler (vNDF paper Listings 1–4, models/micrograin/vndf_sampler.h) at
 //    theta_i = 20, 40, 60, 80 deg, 10^7 samples each, one thread, and the
 //    vNDF/NDF ratio (paper, Table 2: 2.97–3.79 with triangle-cut phi).
-// 2. Paths/s and rays/s of the BRDF walk (sim/estimators/micrograin_walk) on
+// 2. Paths/s and rays/s of the BRDF walk (sim/micrograin/micrograin_walk) on
 //    2 threads (run_chunks, as the estimator; optional 2nd argument: threads),
 //    against the walk's own rtcIntersect1 calls replayed bare (same rays, same
 //    self-hit filter) and first-hit rays from the top on the same scene. Field:
@@ -26,12 +26,12 @@
 #include <string>
 #include <vector>
 
+#include "models/core/rng.h"
 #include "models/micrograin/ndf_sampling.h"
 #include "models/micrograin/vndf_sampler.h"
-#include "sim/core/rng.h"
-#include "sim/estimators/estimator.h"
-#include "sim/estimators/micrograin_walk.h"
-#include "sim/geometry/ray_log.h"
+#include "sim/micrograin/estimator.h"
+#include "sim/micrograin/micrograin_walk.h"
+#include "sim/micrograin/ray_log.h"
 
 using namespace mcref;
 

@@ -19,11 +19,11 @@
 #include <string>
 
 #include "models/sggx/sggx_distribution.h"
-#include "sim/config/experiment.h"
-#include "sim/estimators/estimator.h"
-#include "sim/volume/free_flight.h"
-#include "sim/volume/medium.h"
-#include "sim/volume/walk.h"
+#include "sim/experiment/experiment.h"
+#include "sim/micrograin/estimator.h"
+#include "sim/slab/free_flight.h"
+#include "sim/slab/medium.h"
+#include "sim/slab/walk.h"
 
 namespace {
 

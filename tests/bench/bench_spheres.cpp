@@ -20,10 +20,10 @@
 #include <memory>
 #include <string>
 
-#include "sim/core/rng.h"
-#include "sim/core/warp.h"
-#include "sim/geometry/sphere_packing.h"
+#include "models/core/rng.h"
+#include "models/core/warp.h"
 #include "sim/spheres/sphere_field.h"
+#include "sim/spheres/sphere_packing.h"
 #include "sim/spheres/walks.h"
 
 namespace {

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sim/core/statistics.h"
+#include "models/core/statistics.h"
 #include <cstdint>
 #include <numeric>
 #include <sstream>
@@ -16,13 +16,13 @@
 #include <type_traits>
 #include <vector>
 
-#include "sim/core/quadrature.h"
-#include "sim/core/rng.h"
-#include "sim/core/vec.h"
+#include "models/core/quadrature.h"
+#include "models/core/rng.h"
+#include "models/core/vec.h"
 
 namespace mcref::test {
 
-// The incomplete gamma and chi-squared survival live in sim/core/statistics.h.
+// The incomplete gamma and chi-squared survival live in models/core/statistics.h.
 using mcref::regularized_gamma_p;
 using mcref::regularized_gamma_q;
 inline double chi2_survival(double statistic, int dof) { return mcref::chi2_survival(statistic, dof); }

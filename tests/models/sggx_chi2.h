@@ -13,21 +13,21 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sim/core/statistics.h"
+#include "models/core/statistics.h"
 #include <cstdint>
 #include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "sim/core/frame.h"
-#include "sim/core/quadrature.h"
-#include "sim/core/rng.h"
-#include "sim/core/vec.h"
+#include "models/core/frame.h"
+#include "models/core/quadrature.h"
+#include "models/core/rng.h"
+#include "models/core/vec.h"
 
 namespace mcref::sggx_test {
 
-// The incomplete gamma and chi-squared survival live in sim/core/statistics.h.
+// The incomplete gamma and chi-squared survival live in models/core/statistics.h.
 using mcref::regularized_gamma_q;
 using mcref::chi2_survival;
 

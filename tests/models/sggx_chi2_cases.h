@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "models/core/vec.h"
 #include "models/sggx/sggx_distribution.h"
-#include "sim/core/vec.h"
 
 namespace mcref::sggx_test {
 

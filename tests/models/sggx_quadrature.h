@@ -6,9 +6,9 @@
 // equator, where <pole.m>^+ has its kink.
 #include <cmath>
 
-#include "sim/core/frame.h"
-#include "sim/core/quadrature.h"
-#include "sim/core/vec.h"
+#include "models/core/frame.h"
+#include "models/core/quadrature.h"
+#include "models/core/vec.h"
 
 namespace mcref::sggx_test {
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "models/core/vec.h"
 #include "models/lambert_sphere/albedo_mapping.h"
 #include "models/lambert_sphere/brdf.h"
 #include "models/lambert_sphere/fast_brdf.h"
@@ -15,7 +16,6 @@
 #include "models/lambert_sphere/phase_function.h"
 #include "models/lambert_sphere/reference_brdf.h"
 #include "models/lambert_sphere/single_scattering.h"
-#include "sim/core/vec.h"
 
 namespace ls = mcref::lambert_sphere;
 using mcref::kPi;

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "models/core/rng.h"
+#include "models/core/vec.h"
 #include "models/lambert_sphere/brdf.h"
 #include "models/lambert_sphere/fourier_modes.h"
 #include "models/lambert_sphere/h_functions.h"
@@ -15,8 +17,6 @@
 #include "models/lambert_sphere/phase_function.h"
 #include "models/lambert_sphere/phase_sampling.h"
 #include "models/lambert_sphere/reference_brdf.h"
-#include "sim/core/rng.h"
-#include "sim/core/vec.h"
 
 namespace ls = mcref::lambert_sphere;
 

@@ -5,10 +5,10 @@
 #include <cstdio>
 #include <string>
 
+#include "models/core/quadrature.h"
+#include "models/core/vec.h"
 #include "models/lambert_sphere/phase_function.h"
 #include "models/lambert_sphere/phase_sampling.h"
-#include "sim/core/quadrature.h"
-#include "sim/core/vec.h"
 
 namespace ls = mcref::lambert_sphere;
 using mcref::kPi;

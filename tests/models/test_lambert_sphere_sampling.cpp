@@ -4,7 +4,7 @@
 // density (edges F^{-1}(k/B) from the exact CDF), fixed seeds, N = 10^6
 // samples, significance 0.01 for the file, Sidak-corrected over its 2 chi^2
 // tests that must pass (Eq. 5 at 10^6, Eq. 6 at 10^5): alpha = 1 - 0.99^(1/2). p-value from the chi^2 distribution,
-// Q(dof/2, chi^2/2), the regularised incomplete gamma of sim/core/statistics.h.
+// Q(dof/2, chi^2/2), the regularised incomplete gamma of models/core/statistics.h.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
+#include "models/core/rng.h"
+#include "models/core/statistics.h"
+#include "models/core/vec.h"
 #include "models/lambert_sphere/phase_function.h"
 #include "models/lambert_sphere/phase_sampling.h"
-#include "sim/core/rng.h"
-#include "sim/core/statistics.h"
-#include "sim/core/vec.h"
 
 namespace ls = mcref::lambert_sphere;
 
@@ -28,7 +28,7 @@ void record(const std::string& key, double value) {
   std::printf("[measured] %s = %.6g\n", key.c_str(), value);
 }
 
-// Q(a, x), the regularised upper incomplete gamma of sim/core/statistics.h.
+// Q(a, x), the regularised upper incomplete gamma of models/core/statistics.h.
 using mcref::regularized_gamma_q;
 const auto gamma_q = [](double a, double x) { return regularized_gamma_q(a, x); };
 

@@ -6,13 +6,13 @@
 
 #include <cmath>
 
-#include "models/micrograin/fresnel.h"
+#include "models/core/rng.h"
+#include "models/core/statistics.h"
+#include "models/microfacet/fresnel.h"
 #include "models/micrograin/height_masking.h"
 #include "models/micrograin/micrograin_bsdf.h"
 #include "models/micrograin/ndf_sampling.h"
 #include "models/micrograin/unit_space.h"
-#include "sim/core/rng.h"
-#include "sim/core/statistics.h"
 
 using namespace mcref;
 using namespace mcref::micrograin;

@@ -6,11 +6,11 @@
 #include <vector>
 
 #include "chi2.h"
+#include "models/core/quadrature.h"
+#include "models/core/rng.h"
 #include "models/micrograin/closest_grain.h"
 #include "models/micrograin/grain_field.h"
 #include "models/micrograin/unit_space.h"
-#include "sim/core/quadrature.h"
-#include "sim/core/rng.h"
 
 using namespace mcref;
 using namespace mcref::micrograin;

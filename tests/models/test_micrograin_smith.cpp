@@ -4,11 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "models/core/quadrature.h"
 #include "models/micrograin/ggx.h"
 #include "models/micrograin/ndf.h"
 #include "models/micrograin/smith_lambda.h"
 #include "models/micrograin/unit_space.h"
-#include "sim/core/quadrature.h"
 
 using namespace mcref;
 using namespace mcref::micrograin;

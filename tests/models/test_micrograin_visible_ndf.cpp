@@ -6,10 +6,10 @@
 #include <cmath>
 #include <vector>
 
+#include "models/core/quadrature.h"
+#include "models/core/rng.h"
 #include "models/micrograin/unit_space.h"
 #include "models/micrograin/visible_ndf.h"
-#include "sim/core/quadrature.h"
-#include "sim/core/rng.h"
 
 using namespace mcref;
 using namespace mcref::micrograin;

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "chi2.h"
-#include "sim/core/quadrature.h"
-#include "sim/core/rng.h"
+#include "models/core/quadrature.h"
+#include "models/core/rng.h"
 #include "models/micrograin/projected_area.h"
 #include "models/micrograin/visible_ndf.h"
 #include "models/micrograin/vndf_sampler.h"

@@ -10,9 +10,9 @@
 #include <utility>
 #include <vector>
 
+#include "models/core/quadrature.h"
 #include "models/radiative_transfer/h_function.h"
 #include "models/radiative_transfer/isotropic.h"
-#include "sim/core/quadrature.h"
 
 namespace rt = mcref::radiative_transfer;
 

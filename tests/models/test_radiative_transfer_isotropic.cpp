@@ -3,9 +3,9 @@
 
 #include <cmath>
 
+#include "models/core/quadrature.h"
+#include "models/core/vec.h"
 #include "models/radiative_transfer/isotropic.h"
-#include "sim/core/quadrature.h"
-#include "sim/core/vec.h"
 
 namespace rt = mcref::radiative_transfer;
 using mcref::kPi;

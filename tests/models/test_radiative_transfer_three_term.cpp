@@ -7,10 +7,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "models/core/quadrature.h"
+#include "models/core/vec.h"
 #include "models/radiative_transfer/isotropic.h"
 #include "models/radiative_transfer/three_term_half_space.h"
-#include "sim/core/quadrature.h"
-#include "sim/core/vec.h"
 
 namespace rt = mcref::radiative_transfer;
 using mcref::kPi;

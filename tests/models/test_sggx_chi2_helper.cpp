@@ -5,8 +5,8 @@
 
 #include <cmath>
 
+#include "models/core/warp.h"
 #include "models/sggx/sggx_distribution.h"
-#include "sim/core/warp.h"
 #include "tests/models/sggx_chi2.h"
 
 namespace {

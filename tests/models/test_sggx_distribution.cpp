@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "models/core/frame.h"
+#include "models/core/rng.h"
+#include "models/core/warp.h"
 #include "models/sggx/flake_phase.h"
 #include "models/sggx/mat3.h"
 #include "models/sggx/sggx_distribution.h"
-#include "sim/core/frame.h"
-#include "sim/core/rng.h"
-#include "sim/core/warp.h"
 #include "tests/models/sggx_quadrature.h"
 
 namespace {

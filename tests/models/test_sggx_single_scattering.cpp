@@ -9,10 +9,10 @@
 #include <cstdio>
 #include <vector>
 
+#include "models/core/quadrature.h"
+#include "models/core/rng.h"
+#include "models/core/warp.h"
 #include "models/sggx/single_scattering.h"
-#include "sim/core/quadrature.h"
-#include "sim/core/rng.h"
-#include "sim/core/warp.h"
 #include "tests/models/sggx_quadrature.h"
 
 namespace {

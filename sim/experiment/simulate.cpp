@@ -1,0 +1,43 @@
+#include "sim/experiment/simulate.h"
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include "sim/experiment/simulate_kinds.h"
+
+namespace mcref {
+
+double work_units(const Measure& m) {
+  const std::size_t dirs = m.theta_i.size() * std::max<std::size_t>(1, m.phi_i.size());
+  return static_cast<double>(m.samples) * static_cast<double>(std::max<std::size_t>(1, dirs));
+}
+
+std::vector<Table> flatten(std::vector<std::vector<Table>>&& per_measure) {
+  std::vector<Table> out;
+  for (auto& group : per_measure)
+    for (auto& t : group) out.push_back(std::move(t));
+  return out;
+}
+
+std::vector<Table> simulate(const Experiment& ex, const SimulateOptions& options, SimulateSummary* summary) {
+  const int threads = options.threads > 0 ? options.threads
+                                          : (ex.run.threads > 0 ? ex.run.threads : tbb::info::default_concurrency());
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  double work = 0;
+  for (const Measure& m : ex.measures) work += work_units(m);
+  work *= ex.run.batches;
+  Progress progress(options.label, work, options.quiet);
+  std::size_t grains = 0;
+  std::vector<Table> out = ex.kind == "micrograin" ? simulate_micrograin(ex, progress, &grains)
+                           : ex.kind == "slab"     ? simulate_slab(ex, progress)
+                                                   : simulate_spheres(ex, progress);
+  progress.finish();
+  if (summary) {
+    summary->seconds = progress.elapsed_seconds();
+    summary->rays = work;
+    summary->grains = grains;
+  }
+  return out;
+}
+
+}  // namespace mcref

@@ -1,0 +1,28 @@
+#pragma once
+// The public entry point of the simulator: experiment -> tables.
+#include <string>
+#include <vector>
+
+#include "sim/experiment/experiment.h"
+#include "sim/tally/table.h"
+
+namespace mcref {
+
+struct SimulateOptions {
+  int threads = 0;       // 0: use the experiment's run.threads (0 there: all cores)
+  bool quiet = false;    // no progress line
+  std::string label = "simulate";
+};
+
+struct SimulateSummary {
+  double seconds = 0;
+  double rays = 0;  // rays traced in all (for the summary line)
+  std::size_t grains = 0;  // grains in the last realization
+};
+
+// For each realization: builds the geometry from its own seed, then adds one
+// batch to every measure's tables. Bit-identical for any thread count.
+std::vector<Table> simulate(const Experiment& experiment, const SimulateOptions& options,
+                            SimulateSummary* summary = nullptr);
+
+}  // namespace mcref

@@ -1,0 +1,83 @@
+#include "sim/hdf5/table_group.h"
+
+#include <hdf5_hl.h>
+
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "sim/hdf5/h5_util.h"
+
+namespace mcref {
+
+namespace {
+const std::set<std::string> kReservedAttrs{"quantity", "units", "description", "batches", "axes"};
+}
+
+void write_table_group(hid_t parent, const Table& t, int compression) {
+  h5::Handle group = h5::create_group(parent, t.name);
+  h5::write_string_attr(group, "quantity", t.quantity);
+  h5::write_string_attr(group, "units", t.units);
+  h5::write_string_attr(group, "description", t.description);
+  h5::write_int_attr(group, "batches", t.batches);
+  std::string axes;
+  for (const Axis& a : t.axes) axes += (axes.empty() ? "" : ",") + a.name;
+  h5::write_string_attr(group, "axes", axes);
+  for (const auto& [k, v] : t.attributes) h5::write_string_attr(group, k, v);
+  std::vector<hsize_t> dims;
+  for (std::size_t n : t.shape()) dims.push_back(n);
+  std::vector<h5::Handle> data;
+  data.push_back(h5::write_doubles(group, "value", dims, t.values(), compression));
+  data.push_back(h5::write_doubles(group, "stderr", dims, t.stderrs(), compression));
+  data.push_back(h5::write_doubles(group, "sum", dims, t.sum, compression));
+  data.push_back(h5::write_doubles(group, "sum_sq", dims, t.sum_sq, compression));
+  for (std::size_t d = 0; d < t.axes.size(); ++d) {
+    const Axis& a = t.axes[d];
+    std::vector<double> pts(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) pts[i] = a.centre(i);
+    h5::Handle scale = h5::write_doubles(group, a.name, {a.size()}, pts);
+    h5::write_string_attr(scale, "unit", a.unit);
+    h5::write_string_attr(scale, "kind", a.kind == Axis::Kind::Bins ? "bin centres" : "points");
+    h5::check(H5DSset_scale(scale, a.name.c_str()), "making a dimension scale");
+    for (const h5::Handle& ds : data)
+      h5::check(H5DSattach_scale(ds, scale, static_cast<unsigned>(d)), "attaching a scale");
+    if (a.kind == Axis::Kind::Bins) {
+      h5::Handle edges = h5::write_doubles(group, a.name + "_edges", {a.values.size()}, a.values);
+      h5::write_string_attr(edges, "unit", a.unit);
+    }
+  }
+}
+
+Table read_table_group(hid_t parent, const std::string& name) {
+  h5::Handle group = h5::open_group(parent, name);
+  std::vector<Axis> axes;
+  std::stringstream ss(h5::read_string_attr(group, "axes"));
+  for (std::string a; std::getline(ss, a, ',');) {
+    h5::Handle scale(H5Dopen2(group, a.c_str(), H5P_DEFAULT), H5Dclose);
+    if (!scale.valid()) throw std::runtime_error("missing axis " + a);
+    const std::string unit = h5::read_string_attr(scale, "unit");
+    if (h5::exists(group, a + "_edges"))
+      axes.push_back(Axis::bins(a, unit, h5::read_doubles(group, a + "_edges")));
+    else
+      axes.push_back(Axis::points(a, unit, h5::read_doubles(group, a)));
+  }
+  Table t(name, h5::read_string_attr(group, "quantity"), axes);
+  t.units = h5::read_string_attr(group, "units");
+  t.description = h5::read_string_attr(group, "description");
+  t.batches = h5::read_int_attr(group, "batches");
+  t.sum = h5::read_doubles(group, "sum");
+  t.sum_sq = h5::read_doubles(group, "sum_sq");
+  if (t.sum.size() != t.cells() || t.sum_sq.size() != t.cells()) throw std::runtime_error("table shape mismatch");
+  H5O_info_t info;
+  h5::check(H5Oget_info(group, &info), "reading a group's attributes");
+  for (hsize_t i = 0; i < info.num_attrs; ++i) {
+    h5::Handle attr(H5Aopen_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+    const ssize_t len = H5Aget_name(attr, 0, nullptr);
+    std::string key(static_cast<std::size_t>(len), '\0');
+    H5Aget_name(attr, key.size() + 1, key.data());
+    if (!kReservedAttrs.count(key)) t.attributes[key] = h5::read_string_attr(group, key);
+  }
+  return t;
+}
+
+}  // namespace mcref

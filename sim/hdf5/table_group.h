@@ -1,0 +1,18 @@
+#pragma once
+// One Table as an HDF5 group, in the layout of sim/hdf5/table_file.h:
+//   <group>/value, stderr, sum, sum_sq  (N-d float64), attributes quantity,
+//   units, description, batches, axes and the table's notes; one dimension
+//   scale per axis (bin centres or points) and <axis>_edges for binned axes.
+// Written without time tracking (see h5_util.h), optionally gzip-compressed.
+#include <hdf5.h>
+
+#include <string>
+
+#include "sim/tally/table.h"
+
+namespace mcref {
+
+void write_table_group(hid_t parent, const Table& table, int compression);
+Table read_table_group(hid_t parent, const std::string& name);
+
+}  // namespace mcref

@@ -1,0 +1,45 @@
+// ndf: the NDF D(m) of the grain surface, from rays at normal incidence
+// (every point of the height field is seen), normalised over the
+// grain-covered area (LRPB23 Eq. 14): integral of D(m) cos(theta_m) = 1.
+// The stored value is the cosine-weighted bin average of D:
+// P(m in bin | grain hit) / integral over the bin of cos(theta_m).
+#include "sim/micrograin/estimator.h"
+
+namespace mcref {
+
+Estimator ndf_estimator() {
+  Estimator e;
+  e.make_tables = [](const Measure& m, const Experiment&) {
+    Table t(m.name, "ndf", {theta_bins("theta_m", m.theta_m_bins), phi_bins("phi_m", m.phi_m_bins, false)});
+    t.units = "1/sr";
+    t.description = "NDF D(m), cosine-weighted bin average, normalised over the grain-covered area (Eq. 14)";
+    return std::vector<Table>{t};
+  };
+  e.add_batch = [](const MicrograinField& f, const Experiment&, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {
+    const Axis& th = tables[0].axes[0];
+    const Axis& ph = tables[0].axes[1];
+    const std::size_t cells = th.size() * ph.size();
+    const Vec3 down = unit_direction(f, {0, 0, -1});
+    const Sums acc = run_chunks(m.samples, cells + 1, key.with(0), [&](Rng& rng, std::uint64_t n, Sums& s) {
+      for (std::uint64_t k = 0; k < n; ++k) {
+        const Hit h = f.intersect_unit(uniform_top_origin(f, rng), down);
+        if (h.kind != Hit::Kind::Grain) continue;
+        s[cells] += 1;
+        const int a = th.find_bin(spherical_theta(h.normal));
+        const int b = ph.size() == 1 ? 0 : ph.find_bin(spherical_phi(h.normal));
+        if (a >= 0 && b >= 0) s[a * ph.size() + b] += 1;
+      }
+    });
+    std::vector<double> est(cells, 0.0);
+    const double grain_hits = acc[cells];
+    for (std::size_t a = 0; a < th.size(); ++a)
+      for (std::size_t b = 0; b < ph.size(); ++b) {
+        const double w = cell_projected_solid_angle(th.lower(a), th.upper(a), ph.lower(b), ph.upper(b));
+        est[a * ph.size() + b] = grain_hits > 0 ? acc[a * ph.size() + b] / (grain_hits * w) : NAN;
+      }
+    tables[0].add_batch(est);
+  };
+  return e;
+}
+
+}  // namespace mcref

@@ -1,0 +1,135 @@
+// [geometry] kind = "slab": parsing and validation (issue #4).
+//
+//   [geometry]
+//   kind = "slab"
+//   substrate = "none" | "lambertian" | "conductor" | "rough_conductor"   (default none)
+//   substrate_albedo = 1.0 | [r, g, b]          lambertian (default 1)
+//   substrate_eta = 0.2, substrate_k = 3.9       conductors: complex IOR, one value or [r, g, b]
+//   substrate_alpha                             rough_conductor (GGX), required
+//   delta_transmission = true                   record the unscattered transmission
+//   backend = "homogeneous" | "openvdb"         free-flight sampling (default homogeneous)
+//   tile = 1.0, lateral_voxels = 4, depth_voxels = 32   openvdb grid
+//   [[geometry.layer]]                           top to bottom, at least one
+//   phase = "sggx_surface" | "sggx_fiber" | "hg" | "isotropic" | "lambert_sphere"
+//   thickness = 1.0                              T
+//   density = 1.0  or  optical_thickness = 5     rho, or T rho (then rho = value / T)
+//   alpha = 0.5                                  SGGX roughness
+//   orientation = [x, y, z]  or  orientation_deg = [theta, phi]   SGGX omega_p
+//   g = 0.3                                      hg
+//   albedo = 0.9 | [r, g, b]                     gamma
+//   f0 = 1 | [r, g, b]                           Schlick f0 of the flakes
+//   profile = "constant" | "linear" | "table"    depth profile of density
+//   profile_top, profile_bottom                  linear: multipliers at the top / bottom
+//   profile_table = [...]                        table: multipliers at equally spaced depths
+#include <cmath>
+
+#include "sim/experiment/experiment_parts.h"
+
+namespace mcref {
+
+namespace {
+
+Rgb read_rgb(TomlReader& r, const std::string& key, Range range, double fallback) {
+  const std::vector<double> v = r.numbers(key, range, std::vector<double>{fallback});
+  if (v.size() == 1) return Rgb(v[0]);
+  if (v.size() != 3) r.fail(key, "takes one number or three (RGB), each in " + range.text());
+  return {v[0], v[1], v[2]};
+}
+
+DensityProfile read_profile(TomlReader& r) {
+  DensityProfile p;
+  const std::string kind = r.string("profile", {"constant", "linear", "table"}, std::string("constant"));
+  const Range mult{0, 1e6, false, false};
+  if (kind == "linear") {
+    p.kind = DensityProfile::Kind::kLinear;
+    p.top = r.number("profile_top", mult);
+    p.bottom = r.number("profile_bottom", mult);
+  } else if (kind == "table") {
+    p.kind = DensityProfile::Kind::kTable;
+    p.table = r.numbers("profile_table", mult);
+    if (p.table.size() < 2) r.fail("profile_table", "needs at least 2 values, each in " + mult.text());
+  }
+  if (!(p.max() > 0)) r.fail("profile", "the density profile is zero everywhere; give a positive multiplier");
+  return p;
+}
+
+SlabLayer read_layer(TomlReader& r) {
+  SlabLayer l;
+  const std::string phase = r.string("phase", {"sggx_surface", "sggx_fiber", "hg", "isotropic", "lambert_sphere"});
+  l.phase = phase == "sggx_surface" ? SlabPhase::kSggxSurface
+            : phase == "sggx_fiber" ? SlabPhase::kSggxFiber
+            : phase == "hg"         ? SlabPhase::kHenyeyGreenstein
+            : phase == "isotropic"  ? SlabPhase::kIsotropic
+                                    : SlabPhase::kLambertSphere;
+  l.thickness = r.number("thickness", {0, 1e9, true, false}, 1.0);
+  l.profile = read_profile(r);
+  if (r.has("density") && r.has("optical_thickness"))
+    r.fail("optical_thickness", "give either density or optical_thickness, not both");
+  if (r.has("optical_thickness")) {
+    const double tau = r.number("optical_thickness", {0, 1e6, false, false});
+    l.density = tau / (l.thickness * l.profile.mean());  // so that T rho mean(profile) = tau
+  } else {
+    l.density = r.number("density", {0, 1e9, false, false}, 1.0);
+  }
+  if (l.is_sggx()) {
+    l.alpha = r.number("alpha", {0, 1e3, true, false});
+    if (r.has("orientation") && r.has("orientation_deg"))
+      r.fail("orientation_deg", "give either orientation or orientation_deg, not both");
+    if (r.has("orientation")) {
+      const std::vector<double> v = r.numbers("orientation", {-1e6, 1e6, false, false});
+      if (v.size() != 3) r.fail("orientation", "takes a direction [x, y, z]");
+      const Vec3 d{v[0], v[1], v[2]};
+      if (!(length(d) > 0)) r.fail("orientation", "must be a non-zero direction");
+      l.orientation = normalize(d);
+    } else if (r.has("orientation_deg")) {
+      const std::vector<double> v = r.numbers("orientation_deg", {-360, 360, false, false});
+      if (v.size() != 2) r.fail("orientation_deg", "takes [theta, phi] in degrees, each in [-360, 360]");
+      l.orientation = spherical_direction(deg_to_rad(v[0]), deg_to_rad(v[1]));
+    }
+    l.f0 = read_rgb(r, "f0", {0, 1, false, false}, 1.0);
+  }
+  if (l.phase == SlabPhase::kHenyeyGreenstein) l.g = r.number("g", {-1, 1, true, true});
+  l.albedo = read_rgb(r, "albedo", {0, 1, false, false}, 1.0);
+  return l;
+}
+
+}  // namespace
+
+void read_slab_geometry(TomlReader& g, Experiment& e) {
+  SlabGeometry& s = e.slab;
+  s.configured = true;
+  const auto layers = g.tables("layer");
+  if (layers.empty()) g.fail("layer", "at least one [[geometry.layer]] table is required");
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    TomlReader r(*layers[i], g.file(), g.full("layer." + std::to_string(i)));
+    s.layers.push_back(read_layer(r));
+    r.finish();
+  }
+  const std::string sub = g.string("substrate", {"none", "lambertian", "conductor", "rough_conductor"}, std::string("none"));
+  SlabSubstrate& b = s.substrate;
+  if (sub == "lambertian") {
+    b.kind = SlabSubstrate::Kind::kLambertian;
+    b.albedo = read_rgb(g, "substrate_albedo", {0, 1, false, false}, 1.0);
+  } else if (sub == "conductor" || sub == "rough_conductor") {
+    b.kind = sub == "conductor" ? SlabSubstrate::Kind::kConductor : SlabSubstrate::Kind::kRoughConductor;
+    b.eta = read_rgb(g, "substrate_eta", {0, 100, true, false}, 0.2);
+    b.k = read_rgb(g, "substrate_k", {0, 100, false, false}, 3.9);
+    if (sub == "rough_conductor") b.alpha = g.number("substrate_alpha", {0, 10, true, false});
+  }
+  s.delta_transmission = g.boolean("delta_transmission", true);
+  s.grid.openvdb = g.string("backend", {"homogeneous", "openvdb"}, std::string("homogeneous")) == "openvdb";
+  s.grid.tile = g.number("tile", {0, 1e9, true, false}, 1.0);
+  s.grid.lateral_voxels = static_cast<int>(g.integer("lateral_voxels", 1, 4096, 4));
+  s.grid.depth_voxels = static_cast<int>(g.integer("depth_voxels", 1, 1 << 20, 32));
+  if (static_cast<double>(s.grid.lateral_voxels + 1) * (s.grid.lateral_voxels + 1) * (s.grid.depth_voxels + 1) *
+          s.layers.size() > 2e8)
+    g.fail("depth_voxels", "the grids would hold more than 2e8 voxels; use fewer lateral_voxels or depth_voxels");
+  for (std::size_t i = 0; i < s.layers.size(); ++i)
+    if (!s.grid.openvdb && s.layers[i].profile.kind != DensityProfile::Kind::kConstant)
+      throw ConfigError(e.file, "geometry.layer." + std::to_string(i) + ".profile",
+                        "a depth profile needs backend = \"openvdb\" (the homogeneous backend takes constant density)");
+  e.isotropic = true;
+  for (const SlabLayer& l : s.layers) e.isotropic = e.isotropic && l.azimuthally_symmetric();
+}
+
+}  // namespace mcref

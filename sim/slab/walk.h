@@ -1,0 +1,33 @@
+#pragma once
+// One light path through a slab (analog random walk): enters the top face
+// along -wi, free flights (sim/slab/free_flight.h), phase-function
+// scattering in the layers, substrate bounces, until it leaves through the
+// top (reflection) or the bottom face (transmission, no substrate).
+// Orders count scattering events (volume and substrate); order-1 paths are
+// classed by where their event happened (0 = volume, 1 = substrate).
+// Paths that leave without any volume event and with only specular substrate
+// bounces are delta lobes: the unscattered transmission (order 0, in the
+// totals only, if delta_transmission) and the mirror reflection of
+// a smooth conductor. Russian roulette from order 2 on keeps it unbiased;
+// max_order > 0 drops paths that would scatter more often (the paper's cap).
+#include <cstdint>
+
+#include "models/core/rng.h"
+#include "sim/slab/free_flight.h"
+#include "sim/tally/brdf_tally.h"
+
+namespace mcref::volume {
+
+struct WalkSettings {
+  int max_order = 0;             // 0: unlimited
+  bool delta_transmission = true;
+  int roulette_from = 2;         // Russian roulette once order >= this
+};
+
+inline constexpr int kClassVolume = 0, kClassSubstrate = 1;
+
+// Returns the number of scattering events of the path.
+int walk(const SlabMedium& medium, FreeFlight& flight, const WalkSettings& s, Vec3 wi, Rng& rng,
+         BrdfAccumulator& out);
+
+}  // namespace mcref::volume

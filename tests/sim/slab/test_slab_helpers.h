@@ -1,0 +1,40 @@
+#pragma once
+// Shared by the slab tests: run an experiment given as TOML text, compare a
+// table with a slab model the way the suite does (exact: p >= 0.001 and the
+// Sidak |z| bound at 0.001).
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "sim/experiment/experiment.h"
+#include "sim/experiment/simulate.h"
+#include "validate/metrics.h"
+#include "validate/model_evaluation.h"
+
+namespace slab_test {
+
+inline std::vector<mcref::Table> run(const mcref::Experiment& ex, int threads = 2) {
+  mcref::SimulateOptions o;
+  o.threads = threads;
+  o.quiet = true;
+  return mcref::simulate(ex, o);
+}
+
+inline const mcref::Table& find(const std::vector<mcref::Table>& tables, const std::string& name) {
+  for (const mcref::Table& t : tables)
+    if (t.name == name) return t;
+  throw std::runtime_error("no table " + name);
+}
+
+inline void expect_exact(const std::vector<mcref::Table>& tables, const std::string& table, const std::string& model,
+                         const mcref::Experiment& ex) {
+  const mcref::Table& t = find(tables, table);
+  const std::vector<double> m = mcref::evaluate_model(model, t, ex);
+  const mcref::Comparison c = mcref::compare(t.values(), t.stderrs(), m, t.batches);
+  const mcref::Verdict v = mcref::judge(c, true, 1e-3, 0);
+  EXPECT_EQ(v.status, "pass") << table << " vs " << model << ": " << v.reason;
+  EXPECT_GT(c.cells, 0u);
+}
+
+}  // namespace slab_test

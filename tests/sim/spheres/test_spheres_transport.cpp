@@ -1,0 +1,151 @@
+// Lambertian-sphere volumes, transport: the single-sphere phase histogram
+// against Eq. 1, single scattering of the volumetric half-space against
+// Eq. 10, energy at c = 1 (every path leaves through the top or the bottom
+// with its full weight), bit-identical tables for 1 and 2 threads, and the
+// dilute limit (Poisson f = 0.5 %) against the volumetric half-space.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "models/core/rng.h"
+#include "sim/experiment/experiment.h"
+#include "sim/experiment/simulate.h"
+#include "sim/spheres/sphere_field.h"
+#include "sim/spheres/walks.h"
+#include "validate/metrics.h"
+#include "validate/model_evaluation.h"
+
+using namespace mcref;
+
+namespace {
+
+std::vector<Table> run(const std::string& text, int threads = 0) {
+  const Experiment ex = parse_experiment(text, "test.toml");
+  SimulateOptions o;
+  o.quiet = true;
+  o.threads = threads;
+  return simulate(ex, o);
+}
+
+const Table& find(const std::vector<Table>& t, const std::string& name) {
+  for (const Table& x : t)
+    if (x.name == name) return x;
+  throw std::runtime_error("no table " + name);
+}
+
+Verdict check_exact(const std::string& text, const std::string& table, const std::string& model) {
+  const Experiment ex = parse_experiment(text, "test.toml");
+  SimulateOptions o;
+  o.quiet = true;
+  const std::vector<Table> tables = simulate(ex, o);
+  const Table& t = find(tables, table);
+  const Comparison c = compare(t.values(), t.stderrs(), evaluate_model(model, t, ex), t.batches);
+  return judge(c, true, 1e-3, 0);
+}
+
+}  // namespace
+
+TEST(SpheresTransport, PhaseHistogramMatchesEq1) {
+  const std::string text =
+      "[geometry]\nkind = \"spheres\"\nalbedo = 0.5\nplacement = \"volumetric\"\n"
+      "[run]\nseed = 21\nbatches = 8\n"
+      "[[measure]]\nquantity = \"phase\"\nmu_bins = 32\nsamples = 100000\n";
+  const Verdict v = check_exact(text, "phase", "phase_eq1");
+  EXPECT_EQ(v.status, "pass") << v.reason;
+}
+
+TEST(SpheresTransport, VolumetricSingleScatteringMatchesEq10) {
+  const std::string text =
+      "[geometry]\nkind = \"spheres\"\nalbedo = [0.3, 0.8, 0.99]\nplacement = \"volumetric\"\n"
+      "[run]\nseed = 22\nbatches = 8\n"
+      "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [0, 50, 75]\ntheta_o_bins = 6\nphi_bins = 6\n"
+      "max_order = 1\nsamples = 100000\n";
+  const Verdict v = check_exact(text, "brdf", "single_scattering_eq10");
+  EXPECT_EQ(v.status, "pass") << v.reason;
+}
+
+TEST(SpheresTransport, EnergyIsConservedAtAlbedoOne) {
+  // Every path must leave with weight exactly 1, through the top or the bottom.
+  BrdfLayout l;
+  l.theta_o_bins = 4;
+  l.phi_bins = 4;
+  l.order1_classes = {"sphere"};
+  WalkSettings s;
+  s.albedo = Rgb(1.0);
+  s.depth_mfp = 10;
+  SpherePacking p;
+  p.volume_fraction = 0.07;
+  p.tile = 20;
+  p.depth_mfp = 10;
+  Rng geometry(5);
+  const SphereField field(place_poisson(p, geometry), p.tile);
+  for (int packing = 0; packing < 2; ++packing) {
+    std::vector<double> sums(l.sums_size(), 0.0);
+    BrdfAccumulator acc(l, 0.0, sums);
+    Rgb transmitted;
+    Rng rng(99);
+    const int paths = packing ? 20000 : 100000;
+    const Vec3 wi = spherical_direction(0.7, 0.3);
+    for (int i = 0; i < paths; ++i) {
+      if (packing) packing_path(field, s, wi, rng, acc, transmitted);
+      else volumetric_path(s, wi, rng, acc, transmitted);
+    }
+    double reflected = 0;
+    for (int c = 0; c < l.components(); ++c) reflected += sums[l.binned_size() + c * 3];
+    EXPECT_NEAR(reflected + transmitted[0], paths, 1e-9 * paths) << (packing ? "packing" : "volumetric");
+    // A 10 mean-free-path conservative slab transmits ~ 4 / (3 (1 - g) (10 + 1.4)) ~ 8 %.
+    EXPECT_GT(transmitted[0], 0.03 * paths);
+    EXPECT_LT(transmitted[0], 0.20 * paths);
+  }
+}
+
+TEST(SpheresTransport, BitIdenticalForOneAndTwoThreads) {
+  const std::string text =
+      "[geometry]\nkind = \"spheres\"\nalbedo = [0.3, 0.8, 0.95]\nvolume_fraction = 0.1\nplacement = \"rsa\"\n"
+      "tile = 20\ndepth_mfp = 15\n"
+      "[run]\nseed = 3\nbatches = 2\n"
+      "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [0, 60]\ntheta_o_bins = 4\nphi_bins = 4\nsamples = 10000\n"
+      "[[measure]]\nquantity = \"phase\"\nmu_bins = 8\nsamples = 10000\n";
+  const std::vector<Table> a = run(text, 1), b = run(text, 2);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].name, b[i].name);
+    EXPECT_EQ(a[i].sum, b[i].sum) << a[i].name;
+    EXPECT_EQ(a[i].sum_sq, b[i].sum_sq) << a[i].name;
+  }
+}
+
+TEST(SpheresTransport, DiluteLimitMatchesVolumetric) {
+  // Poisson spheres at f = 0.5 % against the volumetric half-space: a
+  // two-sample test on the directional albedo per order and channel, and on
+  // a coarse BRDF. The opposition (shadow-hiding) peak of the packing has an
+  // angular width ~ r / mfp ~ 0.004 rad, far inside one bin.
+  const std::string geometry =
+      "[geometry]\nkind = \"spheres\"\nalbedo = [0.3, 0.8, 0.95]\nvolume_fraction = 0.005\ntile = 200\n"
+      "transmission_threshold = 1e-3\n";
+  const std::string measure =
+      "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [0, 60]\ntheta_o_bins = 4\nphi_bins = 4\n";
+  const std::vector<Table> packing =
+      run(geometry + "placement = \"poisson\"\n[run]\nseed = 1\nbatches = 6\n" + measure + "samples = 12000\n");
+  const std::vector<Table> volume =
+      run(geometry + "placement = \"volumetric\"\n[run]\nseed = 2\nbatches = 6\n" + measure + "samples = 60000\n");
+  for (const std::string name : {"brdf_albedo", "brdf"}) {
+    const Table& p = find(packing, name);
+    const Table& v = find(volume, name);
+    double chi2 = 0, max_z = 0;
+    int cells = 0;
+    for (std::size_t i = 0; i < p.cells(); ++i) {
+      const double se2 = p.stderr_of(i) * p.stderr_of(i) + v.stderr_of(i) * v.stderr_of(i);
+      if (se2 <= 0) continue;
+      const double z = (p.value(i) - v.value(i)) / std::sqrt(se2);
+      chi2 += z * z;
+      max_z = std::max(max_z, std::fabs(z));
+      ++cells;
+    }
+    // Few batches: t-distributed z; chi2/dof well inside 1 +- 5 sqrt(2/dof) and |z| < 5.
+    EXPECT_LT(chi2 / cells, 1 + 5 * std::sqrt(2.0 / cells) + 0.3) << name << " over " << cells << " cells";
+    EXPECT_LT(max_z, 5.5) << name;
+  }
+}

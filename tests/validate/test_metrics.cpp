@@ -1,0 +1,108 @@
+// validate/metrics: the verdicts on constructed comparisons (deterministic).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "models/core/fp_mode.h"
+#include "models/core/rng.h"
+#include "models/core/vec.h"
+#include "validate/metrics.h"
+
+using namespace mcref;
+
+// A model that is itself a Monte Carlo estimate (standard error 2x the
+// simulation's): ignoring its noise inflates chi2/dof to ~5 and fails an exact
+// check; adding it in quadrature gives chi2 ~ chi2(4000). Seed 11, 4000 cells,
+// normal noise (batches 10^7: the t map is the identity), alpha = 1e-3.
+TEST(Metrics, ModelNoiseEntersInQuadrature) {
+  Rng rng(11);
+  auto normal = [&] { return std::sqrt(-2 * std::log1p(-rng.uniform())) * std::cos(2 * kPi * rng.uniform()); };
+  const std::size_t n = 4000;
+  std::vector<double> sim(n), se(n, 0.01), model(n), model_se(n, 0.02);
+  for (std::size_t i = 0; i < n; ++i) {
+    sim[i] = 1 + se[i] * normal();
+    model[i] = 1 + model_se[i] * normal();
+  }
+  const Comparison without = compare(sim, se, model, 10000000);
+  EXPECT_GT(without.chi2_per_dof(), 4.0);
+  EXPECT_EQ(judge(without, true, 1e-3, 0).status, "FAIL");
+  const Comparison with = compare(sim, se, model, 10000000, model_se);
+  EXPECT_EQ(with.cells, n);
+  EXPECT_EQ(judge(with, true, 1e-3, 0).status, "pass") << with.chi2_per_dof() << " " << with.max_abs_z;
+}
+
+// Welch-Satterthwaite: se = mse = 0.1 with 5 batches gives 16 degrees of
+// freedom for t = 1/sqrt(0.02). A zero-variance cell (no error bar from the
+// simulation) is judged as without model noise: an equal cell agrees.
+TEST(Metrics, ModelNoiseDegreesOfFreedom) {
+  const Comparison a = compare({1.0}, {0.1}, {0.0}, 5, {0.1});
+  const Comparison b = compare({1.0}, {std::sqrt(0.02)}, {0.0}, 17);  // t with 16 dof, no model noise
+  EXPECT_NEAR(a.z[0], b.z[0], 1e-12);
+  const Comparison c = compare({0.7}, {0.0}, {0.7}, 5, {1e-17});
+  EXPECT_EQ(c.cells, 0u);
+  EXPECT_EQ(c.exact_cells, 1u);
+}
+
+TEST(Metrics, ExactModelWithinErrorPasses) {
+  const std::vector<double> sim{1.0, 2.0, 3.0}, se{0.1, 0.1, 0.1}, model{1.05, 1.95, 3.0};
+  const Comparison c = compare(sim, se, model, 32);
+  EXPECT_EQ(c.cells, 3u);
+  EXPECT_EQ(judge(c, true, 1e-3, 0).status, "pass");
+}
+
+TEST(Metrics, ExactModelFarOffFails) {
+  const std::vector<double> sim{1.0, 2.0, 3.0}, se{0.01, 0.01, 0.01}, model{1.0, 2.0, 3.2};
+  EXPECT_EQ(judge(compare(sim, se, model, 32), true, 1e-3, 0).status, "FAIL");
+}
+
+// A cell equal in every batch (stderr 0) far from an exact model fails even
+// beside cells with error bars; an empty bin (sim 0) is only noted.
+TEST(Metrics, GrossZeroVarianceMismatchFailsExactModels) {
+  const std::vector<double> se{0.1, 0.0}, model{1.0, 0.9};
+  EXPECT_EQ(judge(compare({1.0, 1.0}, se, model, 32), true, 1e-3, 0).status, "FAIL");
+  EXPECT_EQ(judge(compare({1.0, 0.0}, se, model, 32), true, 1e-3, 0).status, "pass");
+  EXPECT_EQ(judge(compare({1.0, 0.9}, se, model, 32), true, 1e-3, 0).status, "pass");
+}
+
+TEST(Metrics, ToleranceNeedsSignal) {
+  // |sim| < 5 stderr everywhere: the tolerance cannot be checked.
+  const std::vector<double> sim{0.1, 0.2}, se{0.1, 0.1}, model{0.0, 0.0};
+  EXPECT_EQ(judge(compare(sim, se, model, 32), false, 1e-3, 0.05).status, "FAIL");
+  // With signal, a model of 0 counts as 100 % off.
+  const Comparison c = compare({1.0}, {0.01}, {0.0}, 32);
+  EXPECT_GE(c.max_rel_error, 1.0);
+  EXPECT_EQ(judge(c, false, 1e-3, 0.05).status, "FAIL");
+}
+
+// The t -> z map: with 1 batch of freedom more the z shrinks toward the normal.
+TEST(Metrics, StudentTailsAreMappedToNormalQuantiles) {
+  const Comparison few = compare({3.0}, {1.0}, {0.0}, 4), many = compare({3.0}, {1.0}, {0.0}, 10000);
+  EXPECT_LT(few.max_abs_z, many.max_abs_z);
+  EXPECT_NEAR(many.max_abs_z, 3.0, 1e-2);
+}
+
+// Embree's threads may run with flush-to-zero / denormals-are-zero. Results
+// that underflow below the normal range must not depend on that mode, or a
+// check's p-value (and the z of extreme cells) would depend on which thread
+// computed it: 144 normal cells at z = 3.7 (p ~ 1e-316, a denormal), and
+// Student cells (16 batches) whose tails reach and pass the denormal range.
+TEST(Metrics, UnderflowDoesNotDependOnFlushToZero) {
+#ifndef MCREF_HAS_MXCSR
+  GTEST_SKIP() << "MXCSR flush-to-zero is an x86 mode";
+#else
+  const std::vector<double> se(144, 1.0), model(144, 1.0);
+  std::vector<double> normal_cells(144, 1.0 + 3.7), student_cells(144, 1.0);
+  for (std::size_t i = 0; i < student_cells.size(); ++i) student_cells[i] += std::pow(10.0, 0.25 * i);  // t = 1 .. 1e36
+  const unsigned saved = _mm_getcsr();
+  const Comparison a = compare(normal_cells, se, model, 100000000), b = compare(student_cells, se, model, 16);
+  _mm_setcsr(saved | IeeeDenormals::kFlushBits);  // FTZ | DAZ
+  const Comparison a_ftz = compare(normal_cells, se, model, 100000000), b_ftz = compare(student_cells, se, model, 16);
+  _mm_setcsr(saved);
+  EXPECT_EQ(a.p_value, a_ftz.p_value);
+  EXPECT_GT(a.p_value, 0.0);  // gradual underflow: a denormal, not 0
+  EXPECT_LT(a.p_value, std::numeric_limits<double>::min());
+  for (std::size_t i = 0; i < student_cells.size(); ++i) EXPECT_EQ(b.z[i], b_ftz.z[i]) << "cell " << i;
+  EXPECT_EQ(b.chi2, b_ftz.chi2);
+#endif
+}

@@ -1,0 +1,41 @@
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "sim/experiment/config_error.h"
+#include "sim/hdf5/table_file.h"
+#include "validate/app/verbs.h"
+
+namespace mcref::cli {
+
+int info(const std::vector<std::string>& raw) {
+  Args a = parse_args(raw, "info", false);
+  if (a.help) {
+    std::fputs("usage: mcref info TABLES.h5\n\nPrints the tables of an mcref file: quantity, axes, batch count,\n"
+               "the largest relative standard error, and the provenance.\n", stdout);
+    return 0;
+  }
+  if (a.positional.size() != 1) throw ConfigError("command line", "", "mcref info needs exactly one TABLES.h5");
+  const TableFile f = read_table_file(a.positional[0]);
+  const Provenance& p = f.provenance;
+  std::printf("%s\n  mcref %s (commit %s), created %s, seed %llu\n  command: %s\n  source: %s\n",
+              a.positional[0].c_str(), p.mcref_version.c_str(), p.git_commit.c_str(), p.created.c_str(),
+              static_cast<unsigned long long>(p.seed), p.command_line.c_str(), p.source_file.c_str());
+  for (const Table& t : f.tables) {
+    std::ostringstream axes;
+    for (const Axis& ax : t.axes) {
+      axes << (axes.tellp() > 0 ? " x " : "") << ax.name << "[" << ax.size() << (ax.kind == Axis::Kind::Bins ? " bins" : "") << "]";
+    }
+    double worst = 0;
+    for (std::size_t i = 0; i < t.cells(); ++i) {
+      const double v = t.value(i), e = t.stderr_of(i);
+      if (std::isfinite(v) && std::isfinite(e) && std::fabs(v) > 0) worst = std::fmax(worst, e / std::fabs(v));
+    }
+    std::printf("  %-28s %-18s %s  batches=%lld  max rel. stderr=%.3g  [%s]\n", t.name.c_str(), t.quantity.c_str(),
+                axes.str().c_str(), static_cast<long long>(t.batches), worst, t.units.c_str());
+  }
+  std::printf("config:\n%s\n", p.config.c_str());
+  return 0;
+}
+
+}  // namespace mcref::cli

@@ -1,0 +1,54 @@
+// mcref: the command-line front end; one file per verb (validate/app/*_verb.cpp).
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "sim/experiment/config_error.h"
+#include "validate/app/verbs.h"
+
+namespace {
+
+const char* kUsage =
+    "mcref: Monte Carlo ground truth for analytic BRDF models of porous microstructures\n"
+    "\n"
+    "usage: mcref <verb> [options]\n"
+    "  simulate EXPERIMENT.toml -o TABLES.h5   simulate an experiment, write its tables\n"
+    "  validate SUITE.toml -o OUTDIR           run a validation suite, write tables, plots, report\n"
+    "  info TABLES.h5                          print the tables, axes, sample counts and provenance\n"
+    "  export-vdb EXPERIMENT.toml -o OUT.vdb   write a slab's layer density grids (OpenVDB)\n"
+    "  dataset DATASET.toml -o DATA.h5         simulate every entry of a parameter sweep (--shard K/N)\n"
+    "  merge SHARD.h5... -o DATA.h5            combine dataset shards into one file\n"
+    "\n"
+    "`mcref <verb> --help` explains each verb.\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    std::fputs(kUsage, args.empty() ? stderr : stdout);
+    return args.empty() ? 2 : 0;
+  }
+  std::string command_line;
+  for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
+  const std::string verb = args[0];
+  args.erase(args.begin());
+  try {
+    if (verb == "simulate") return mcref::cli::simulate(args, command_line);
+    if (verb == "validate") return mcref::cli::validate(args, command_line);
+    if (verb == "info") return mcref::cli::info(args);
+    if (verb == "export-vdb") return mcref::cli::export_vdb(args);
+    if (verb == "dataset") return mcref::cli::dataset(args, command_line);
+    if (verb == "merge") return mcref::cli::merge(args);
+    std::fprintf(stderr, "mcref: error: unknown verb '%s' (allowed: simulate, validate, info, export-vdb, dataset, merge)\n", verb.c_str());
+    return 2;
+  } catch (const mcref::ConfigError& e) {
+    std::fprintf(stderr, "mcref: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mcref: error: %s\n", e.what());
+    return 1;
+  }
+}

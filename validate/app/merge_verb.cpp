@@ -1,0 +1,34 @@
+// mcref merge A.h5 B.h5 ... -o DATA.h5
+#include <cstdio>
+
+#include "sim/dataset/dataset_run.h"
+#include "sim/experiment/config_error.h"
+#include "validate/app/verbs.h"
+
+namespace mcref::cli {
+
+namespace {
+const char* kHelp =
+    "usage: mcref merge SHARD.h5... -o DATA.h5 [--quiet]\n"
+    "\n"
+    "Combines the shard files written by `mcref dataset --shard K/N` (same dataset\n"
+    "config, seed and mcref build; no entry twice; every entry present) into one\n"
+    "dataset file, byte for byte the file a single-process run would have written.\n";
+}  // namespace
+
+int merge(const std::vector<std::string>& raw) {
+  Args a = parse_args(raw, "merge", false);
+  if (a.help) {
+    std::fputs(kHelp, stdout);
+    return 0;
+  }
+  if (a.positional.empty()) throw ConfigError("command line", "", "mcref merge needs shard files (see --help)");
+  if (a.output.empty()) throw ConfigError("command line", "-o", "an output file is required (-o DATA.h5)");
+  const std::int64_t n = merge_datasets(a.positional, a.output, a.quiet);
+  if (!a.quiet)
+    std::fprintf(stderr, "mcref merge: %lld entries from %zu files -> %s\n", static_cast<long long>(n),
+                 a.positional.size(), a.output.c_str());
+  return 0;
+}
+
+}  // namespace mcref::cli

@@ -1,0 +1,41 @@
+#include <cstdio>
+
+#include "sim/experiment/config_error.h"
+#include "validate/app/verbs.h"
+#include "validate/suite.h"
+
+namespace mcref::cli {
+
+namespace {
+const char* kHelp =
+    "usage: mcref validate SUITE.toml -o OUTDIR [--threads N] [--force] [--quiet]\n"
+    "\n"
+    "Runs every case of a validation suite: simulates its experiment (reusing\n"
+    "OUTDIR/tables/<case>.h5 when its stored config, mcref version and clean git\n"
+    "commit match and it holds every checked table), compares each\n"
+    "table with the analytic models, and writes OUTDIR/results.json,\n"
+    "OUTDIR/plots/*.png and OUTDIR/report.html.\n"
+    "Exit status: 0 if every check passes, 1 if any fails, 2 on bad input.\n"
+    "  --force    simulate again even when cached tables are current\n";
+}  // namespace
+
+int validate(const std::vector<std::string>& raw, const std::string& command_line) {
+  Args a = parse_args(raw, "validate", false);
+  if (a.help) {
+    std::fputs(kHelp, stdout);
+    return 0;
+  }
+  if (a.positional.size() != 1) throw ConfigError("command line", "", "mcref validate needs exactly one SUITE.toml (see --help)");
+  if (a.output.empty()) throw ConfigError("command line", "-o", "an output directory is required (-o OUTDIR)");
+  const Suite suite = load_suite(a.positional[0]);
+  SuiteOptions o;
+  o.out_dir = a.output;
+  o.threads = a.threads;
+  o.quiet = a.quiet;
+  o.force = a.force;
+  o.command_line = command_line;
+  o.scripts_dir = MCREF_SCRIPTS_DIR;
+  return run_suite(suite, o) > 0 ? 1 : 0;
+}
+
+}  // namespace mcref::cli

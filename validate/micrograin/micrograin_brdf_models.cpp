@@ -1,0 +1,279 @@
+// Models of the micrograin_brdf family (issue #3): LRPB23 Eq. 1–2 and the
+// later paper's form (vNDF paper Eq. 1), evaluated on brdf tables as
+// cosine-weighted bin averages over (cos theta_o, phi) cells, per RGB channel,
+// and on albedo / delta tables as directional energies. None is exact for the
+// explicit geometry (all are single-scattering models, and their masking
+// terms approximate the true visibility); see micrograin_bsdf.h.
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include <tbb/parallel_for.h>
+
+#include "models/core/quadrature.h"
+#include "models/micrograin/micrograin_bsdf.h"
+#include "sim/tally/brdf_tally.h"
+#include "validate/micrograin/simulated_pore_base.h"
+#include "validate/model_evaluation.h"
+
+namespace mcref {
+
+namespace mg = micrograin;
+
+namespace {
+
+mg::MicroSurface channel_of(const MicroBrdf& b, int k) {
+  mg::MicroSurface s;
+  switch (b.type) {
+    case MicroBrdf::Type::Black: s.type = mg::MicroSurface::Type::Black; break;
+    case MicroBrdf::Type::Lambertian: s.type = mg::MicroSurface::Type::Lambertian; break;
+    case MicroBrdf::Type::Conductor: s.type = mg::MicroSurface::Type::Conductor; break;
+    case MicroBrdf::Type::RoughConductor: s.type = mg::MicroSurface::Type::RoughConductor; break;
+    case MicroBrdf::Type::DiffuseSpecular: s.type = mg::MicroSurface::Type::DiffuseSpecular; break;
+  }
+  s.kd = b.albedo[k];
+  s.eta = b.eta[k];
+  s.kappa = b.kappa[k];
+  s.ior = b.ior;
+  s.alpha = b.alpha;
+  return s;
+}
+
+struct Spec {
+  enum class Part { Grain, Base, Total } part;
+  enum class Form { Lrpb23, Gdist } form;
+  mg::LambdaMethod lambda = mg::LambdaMethod::Quadrature;
+  bool simulated_vp = false;  // base term with V_p(i, o) measured (validate/micrograin/simulated_pore_base.h)
+};
+
+const std::map<std::string, Spec>& specs() {
+  using P = Spec::Part;
+  using F = Spec::Form;
+  using L = mg::LambdaMethod;
+  static const std::map<std::string, Spec> s{
+      {"lrpb23_series4", {P::Total, F::Lrpb23, L::Series4}},
+      {"lrpb23_quadrature", {P::Total, F::Lrpb23, L::Quadrature}},
+      {"lrpb23_ggx", {P::Total, F::Lrpb23, L::GgxEquivalent}},
+      {"lrpb23_grain_series4", {P::Grain, F::Lrpb23, L::Series4}},
+      {"lrpb23_grain_quadrature", {P::Grain, F::Lrpb23, L::Quadrature}},
+      {"lrpb23_grain_ggx", {P::Grain, F::Lrpb23, L::GgxEquivalent}},
+      {"lrpb23_base", {P::Base, F::Lrpb23}},
+      {"gdist_grain", {P::Grain, F::Gdist}},
+      {"gdist_total", {P::Total, F::Gdist}},
+      {"lrpb23_albedo_quadrature", {P::Total, F::Lrpb23, L::Quadrature}},
+      {"gdist_albedo", {P::Total, F::Gdist}},
+      {"gdist_base_simvp", {P::Base, F::Gdist, L::Quadrature, true}},
+      {"gdist_total_simvp", {P::Total, F::Gdist, L::Quadrature, true}},
+      {"gdist_albedo_simvp", {P::Total, F::Gdist, L::Quadrature, true}},
+  };
+  return s;
+}
+
+std::vector<ModelInfo> model_list() {
+  std::vector<ModelInfo> m{
+      {"lrpb23_series4", "brdf", false, "LRPB23 Eq. 1-2, G = 1/(1+Lambda_i+Lambda_o), Lambda by the series n = 4 (Eq. 25)", "micrograin", "total"},
+      {"lrpb23_quadrature", "brdf", false, "LRPB23 Eq. 1-2, Lambda by quadrature of the exact NDF", "micrograin", "total"},
+      {"lrpb23_ggx", "brdf", false, "LRPB23 Eq. 1-2, Lambda of GGX at alpha~ (Eq. 18)", "micrograin", "total"},
+      {"lrpb23_grain_series4", "brdf", false, "LRPB23 w+ f^S (Eq. 1-2, 24), Lambda series n = 4", "micrograin", "order1_grain"},
+      {"lrpb23_grain_quadrature", "brdf", false, "LRPB23 w+ f^S, Lambda by quadrature", "micrograin", "order1_grain"},
+      {"lrpb23_grain_ggx", "brdf", false, "LRPB23 w+ f^S, Lambda of GGX at alpha~", "micrograin", "order1_grain"},
+      {"lrpb23_base", "brdf", false,
+       "(1 - w+) f^B (LRPB23 Eq. 1, 24) = (1 - tau0) V(i) V(o) f_B (vNDF Eq. 1, independent pore visibilities)", "micrograin",
+       "order1_base"},
+      {"gdist_grain", "brdf", false,
+       "tau0 f_S (vNDF Eq. 1): single scattering on grains, D of Eq. 2, G_dist(i,h) G_dist(o,h) (Eq. 3)", "micrograin",
+       "order1_grain"},
+      {"gdist_total", "brdf", false, "tau0 f_S + V_p f_B (vNDF Eq. 1), G_dist product, independent V_p", "micrograin", "total"},
+      {"lrpb23_albedo_quadrature", "albedo", false,
+       "directional albedo of LRPB23 Eq. 1-2 (Lambda by quadrature), delta lobe included, and of its grain and base "
+       "parts (order-1 components); delta table: its delta energy",
+       "micrograin", ""},
+      {"gdist_albedo", "albedo", false,
+       "directional albedo of vNDF Eq. 1 with G_dist, delta lobe included, and of its grain and base parts (order-1 "
+       "components)",
+       "micrograin", ""},
+      {"gdist_base_simvp", "brdf", false,
+       "(1 - tau0) V_p(i, o) f_B (vNDF Eq. 1) with the bidirectional pore visibility V_p measured on an explicit field "
+       "(no closed form): exact for a single event on the base, up to its own Monte Carlo noise (~1 %), which "
+       "enters z",
+       "micrograin", "order1_base"},
+      {"gdist_total_simvp", "brdf", false,
+       "tau0 f_S with G_dist + (1 - tau0) V_p(i, o) f_B with V_p measured (vNDF Eq. 1; its noise enters z)",
+       "micrograin", "total"},
+      {"gdist_albedo_simvp", "albedo", false,
+       "directional albedo of vNDF Eq. 1 with G_dist and V_p(i, o) measured (its noise enters z); grain and base "
+       "parts in the order-1 components",
+       "micrograin", ""},
+  };
+  return m;
+}
+
+// f of one model for all channels.
+void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 i, Vec3 o, double out[3]) {
+  double geometry = -1;  // the G_dist diffuse geometry is channel-independent: compute once
+  for (int k = 0; k < 3; ++k) {
+    const mg::MicroSurface g = channel_of(mat.grain, k), b = channel_of(mat.base, k);
+    double v = 0;
+    if (s.part != Spec::Part::Base) {
+      if (s.form == Spec::Form::Lrpb23) {
+        v += mg::lrpb23_grain_part(f, g, i, o, s.lambda);
+      } else if (g.type == mg::MicroSurface::Type::Lambertian || g.type == mg::MicroSurface::Type::DiffuseSpecular) {
+        const bool lambert = g.type == mg::MicroSurface::Type::Lambertian;
+        if (geometry < 0) geometry = mg::gdist_diffuse_geometry(f, i, o, lambert ? 0.0 : g.ior);
+        if (lambert) {
+          v += g.kd * geometry;
+        } else {
+          mg::MicroSurface specular_only = g;
+          specular_only.kd = 0;  // its diffuse term vanishes: the specular lobe alone
+          v += mg::body_factor(g) * geometry + mg::gdist_grain_single_scattering(f, specular_only, i, o);
+        }
+      } else {
+        v += mg::gdist_grain_single_scattering(f, g, i, o);
+      }
+    }
+    if (s.part != Spec::Part::Grain) v += mg::lrpb23_base_part(f, b, i, o);
+    out[k] = v;
+  }
+}
+
+std::vector<double> evaluate_brdf(const Spec& s, const Table& t, const Experiment& ex, const mg::GrainField& f) {
+  std::vector<double> out(t.cells(), NAN);
+  const Axis &ti = t.axes[0], &pi = t.axes[1], &to = t.axes[2], &ph = t.axes[3];
+  const int n = s.form == Spec::Form::Gdist ? 3 : 6;
+  const GaussLegendre g(n);
+  // One task per (theta_i, phi_i, theta_o) row of cells; each writes only its own cells.
+  tbb::parallel_for(std::size_t{0}, ti.size() * pi.size() * to.size(), [&](std::size_t row) {
+    const std::size_t a = row / (pi.size() * to.size()), b = row / to.size() % pi.size(), c = row % to.size();
+    const Vec3 wi = spherical_direction(ti.values[a], pi.values[b]);
+    const double mu0 = std::cos(to.upper(c)), mu1 = std::cos(to.lower(c));
+    for (std::size_t d = 0; d < ph.size(); ++d) {
+      double num[3] = {0, 0, 0}, den = 0;
+      for (int u = 0; u < n; ++u)
+        for (int v = 0; v < n; ++v) {
+          const double mu = 0.5 * (mu0 + mu1) + 0.5 * (mu1 - mu0) * g.x[u];
+          const double phi = 0.5 * (ph.lower(d) + ph.upper(d)) + 0.5 * (ph.upper(d) - ph.lower(d)) * g.x[v];
+          const double w = g.w[u] * g.w[v] * mu;
+          const Vec3 wo = spherical_direction(std::acos(std::fmin(1.0, mu)), pi.values[b] + phi);
+          double fv[3];
+          eval_f(s, f, ex.materials, wi, wo, fv);
+          for (int k = 0; k < 3; ++k) num[k] += w * fv[k];
+          den += w;
+        }
+      for (std::size_t k = 0; k < 3; ++k) out[t.index({a, b, c, d, k})] = num[k] / den;
+    }
+  });
+  return out;
+}
+
+std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experiment& ex, const mg::GrainField& f) {
+  std::vector<double> out(t.cells(), NAN);
+  const bool delta_table = is_delta_table(t.name);
+  const Axis &ti = t.axes[0], &pi = t.axes[1];
+  const std::size_t total = t.axes[2].size() - 1, grain_component = 0, base = 1;  // order1_grain, order1_base
+  const GaussLegendre gm(24), gp(24);
+  // One task per incident direction; each writes only its own cells.
+  tbb::parallel_for(std::size_t{0}, ti.size() * pi.size(), [&](std::size_t dir) {
+    const std::size_t a = dir / pi.size(), b = dir % pi.size();
+    const Vec3 wi = spherical_direction(ti.values[a], pi.values[b]);
+    double delta[3];
+    for (int k = 0; k < 3; ++k) delta[k] = mg::lrpb23_base_delta_energy(f, channel_of(ex.materials.base, k), wi);
+    if (delta_table) {
+      for (std::size_t k = 0; k < 3; ++k) {
+        out[t.index({a, b, base, k})] = delta[k];
+        out[t.index({a, b, total, k})] = delta[k];
+      }
+      return;
+    }
+    // Energy of the grain part and of the base part (order-1 components of
+    // the table), so that a model's error splits into its order-1 terms and
+    // the multiple scattering it leaves out.
+    double e[2][3] = {{0, 0, 0}, {0, 0, 0}};
+    const double span = ex.isotropic ? kPi : 2 * kPi;
+    const Spec grain{Spec::Part::Grain, s.form, s.lambda}, base_part{Spec::Part::Base, s.form, s.lambda};
+    for (std::size_t u = 0; u < gm.x.size(); ++u)
+      for (std::size_t v = 0; v < gp.x.size(); ++v) {
+        const double mu = 0.5 + 0.5 * gm.x[u], phi = 0.5 * span * (1 + gp.x[v]);
+        const Vec3 wo = spherical_direction(std::acos(mu), pi.values[b] + phi);
+        const double w = 0.5 * gm.w[u] * 0.5 * span * gp.w[v] * mu * (ex.isotropic ? 2 : 1);
+        double fg[3], fb[3];
+        eval_f(grain, f, ex.materials, wi, wo, fg);
+        eval_f(base_part, f, ex.materials, wi, wo, fb);
+        for (int k = 0; k < 3; ++k) {
+          e[0][k] += w * fg[k];
+          e[1][k] += w * fb[k];
+        }
+      }
+    for (std::size_t k = 0; k < 3; ++k) {
+      out[t.index({a, b, grain_component, k})] = e[0][k];
+      out[t.index({a, b, base, k})] = e[1][k] + delta[k];
+      out[t.index({a, b, total, k})] = e[0][k] + e[1][k] + delta[k];
+    }
+  });
+  return out;
+}
+
+// The Gdist form with the measured V_p: the grain part as gdist_*, the base
+// part from simulated_pore_base.
+const PoreBase& measured_pore_base(const Table& t, const Experiment& ex) {
+  const MicrograinMaterials& mat = ex.materials;
+  const BaseReflection base{
+      [&](int ch, Vec3 i, Vec3 o) { return mg::flat_brdf(channel_of(mat.base, ch), i, o); },
+      [&](int ch, Vec3 i) { return mg::flat_delta_energy(channel_of(mat.base, ch), i.z); }};
+  return simulated_pore_base(t, ex, base);
+}
+
+std::vector<double> evaluate_simulated_vp(const Spec& s, const Table& t, const Experiment& ex, const mg::GrainField& f) {
+  std::vector<double> out = measured_pore_base(t, ex).values;
+  if (s.part == Spec::Part::Base) return out;
+  const Spec grain{Spec::Part::Grain, Spec::Form::Gdist};
+  if (t.quantity == "brdf") {
+    const std::vector<double> g = evaluate_brdf(grain, t, ex, f);
+    for (std::size_t k = 0; k < out.size(); ++k) out[k] += g[k];
+    return out;
+  }
+  const bool delta_table = is_delta_table(t.name);
+  if (delta_table) return out;
+  const std::vector<double> g = evaluate_albedo(grain, t, ex, f);  // its order1_grain component
+  const Axis &ti = t.axes[0], &pi = t.axes[1];
+  const std::size_t grain_component = 0, total = t.axes[2].size() - 1;
+  for (std::size_t a = 0; a < ti.size(); ++a)
+    for (std::size_t b = 0; b < pi.size(); ++b)
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::size_t gi = t.index({a, b, grain_component, k});
+        out[gi] = g[gi];
+        out[t.index({a, b, total, k})] += g[gi];
+      }
+  return out;
+}
+
+std::vector<double> evaluate(const std::string& model, const Table& t, const Experiment& ex) {
+  const auto it = specs().find(model);
+  if (it == specs().end()) throw std::invalid_argument("no model " + model);
+  if (!ex.materials.configured) throw std::invalid_argument("model " + model + " needs [material]");
+  const MicrograinGeometry& geo = ex.micrograin;
+  if (geo.anisotropic() && it->second.form == Spec::Form::Lrpb23)
+    throw std::invalid_argument("model " + model + " is defined for isotropic grains only");
+  const mg::GrainField f{geo.tau0, geo.beta_x, geo.beta_y};
+  if (it->second.simulated_vp) return evaluate_simulated_vp(it->second, t, ex, f);
+  if (t.quantity == "brdf") return evaluate_brdf(it->second, t, ex, f);
+  if (t.quantity == "albedo") return evaluate_albedo(it->second, t, ex, f);
+  throw std::invalid_argument("model " + model + " does not predict " + t.quantity);
+}
+
+// The measured-V_p models carry the noise of that measurement (the grain
+// part is analytic; its cells have no measured error: NaN, read as 0).
+std::vector<double> evaluate_stderr(const std::string& model, const Table& t, const Experiment& ex,
+                                    const std::vector<double>&) {
+  const auto it = specs().find(model);
+  if (it == specs().end() || !it->second.simulated_vp || !ex.materials.configured) return {};
+  return measured_pore_base(t, ex).stderrs;
+}
+
+}  // namespace
+
+const ModelFamily& micrograin_brdf_models() {
+  static const ModelFamily family{model_list(), evaluate, evaluate_stderr};
+  return family;
+}
+
+}  // namespace mcref
