@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "sim/files/temp_file.h"
 #include "validate/suite.h"
 
 namespace fs = std::filesystem;
@@ -53,17 +54,6 @@ std::string html(const std::string& s) {
     else o += c;
   }
   return o;
-}
-
-// Writes to a temporary file and renames it into place.
-void write_file_atomically(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
-  }
-  fs::rename(tmp, path);
 }
 
 std::string results_json(const Suite& suite, const std::vector<CaseResult>& results) {
@@ -221,7 +211,7 @@ std::string report_html(const Suite& suite, const std::vector<CaseResult>& resul
 
 void write_report(const Suite& suite, const std::vector<CaseResult>& results, const SuiteOptions& o) {
   const fs::path out(o.out_dir);
-  write_file_atomically(out / "results.json", results_json(suite, results));
+  write_text_file((out / "results.json").string(), results_json(suite, results));
   // Plots: Debian's python3 with matplotlib and h5py (see scripts/setup.sh).
   const fs::path script = fs::path(o.scripts_dir) / "plot_validation.py";
   bool have_plots = false;
@@ -232,7 +222,7 @@ void write_report(const Suite& suite, const std::vector<CaseResult>& results, co
   } else {
     std::fprintf(stderr, "mcref validate: warning: %s not found; the report has no plots\n", script.c_str());
   }
-  write_file_atomically(out / "report.html", report_html(suite, results, have_plots));
+  write_text_file((out / "report.html").string(), report_html(suite, results, have_plots));
   int fails = 0, total = 0;
   for (const CaseResult& c : results)
     for (const CheckResult& r : c.checks) {

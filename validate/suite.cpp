@@ -14,6 +14,7 @@
 
 #include "sim/experiment/simulate.h"
 #include "sim/experiment/toml_reader.h"
+#include "sim/files/input_file.h"
 #include "sim/hdf5/table_file.h"
 #include "sim/tally/brdf_tally.h"
 #include "validate/metrics.h"
@@ -34,13 +35,10 @@ namespace {
 
 Suite load_suite_at_depth(const std::string& path, int depth) {
   if (depth > 8) throw ConfigError(path, "suite.include", "includes nest deeper than 8 (a cycle?)");
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path, "", "cannot read the file");
-  std::stringstream buf;
-  buf << in.rdbuf();
+  const std::string text = read_input_file(path);
   toml::table root;
   try {
-    root = toml::parse(buf.str(), path);
+    root = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     throw ConfigError(path, "", "TOML syntax error at line " + std::to_string(e.source().begin.line) + ": " +
                                     std::string(e.description()));

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "sim/experiment/toml_reader.h"
+#include "sim/files/input_file.h"
 
 namespace mcref {
 
@@ -23,14 +24,6 @@ toml::table parse_toml(const std::string& text, const std::string& file) {
     s << "line " << err.source().begin.line << ": " << err.description();
     throw ConfigError(file, "", "TOML syntax error at " + s.str());
   }
-}
-
-std::string read_text(const std::string& path, const std::string& from_file, const std::string& key) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(from_file, key, "cannot read '" + path + "'");
-  std::stringstream buf;
-  buf << in.rdbuf();
-  return buf.str();
 }
 
 // Numbers of one value: a number, or an array of numbers; empty otherwise.
@@ -206,7 +199,7 @@ DatasetConfig parse_dataset(const std::string& text, const std::string& file) {
   c.experiment = dr.any_string("experiment");
   const std::filesystem::path base = std::filesystem::path(file).parent_path() / c.experiment;
   c.experiment_file = base.lexically_normal().string();
-  c.base = parse_toml(read_text(c.experiment_file, file, "dataset.experiment"), c.experiment_file);
+  c.base = parse_toml(read_input_file(c.experiment_file, file, "dataset.experiment"), c.experiment_file);
   std::ostringstream base_canonical;
   base_canonical << c.base;
   c.experiment_text = base_canonical.str();
@@ -237,6 +230,6 @@ DatasetConfig parse_dataset(const std::string& text, const std::string& file) {
   return c;
 }
 
-DatasetConfig load_dataset(const std::string& path) { return parse_dataset(read_text(path, path, ""), path); }
+DatasetConfig load_dataset(const std::string& path) { return parse_dataset(read_input_file(path), path); }
 
 }  // namespace mcref

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "sim/experiment/config_error.h"
+#include "sim/files/temp_file.h"
 #include "sim/hdf5/h5_util.h"
 #include "sim/hdf5/table_group.h"
 #include "sim/hdf5/table_file.h"
@@ -43,10 +44,10 @@ std::string DatasetHeader::difference(const DatasetHeader& o) const {
 }
 
 DatasetWriter::DatasetWriter(const std::string& path, const DatasetHeader& header)
-    : path_(path), tmp_(path + ".tmp." + std::to_string(getpid())), header_(header) {
+    : path_(path), tmp_(path), header_(header) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   h5::Handle fcpl = h5::file_create_plist();
-  file_ = H5Fcreate(tmp_.c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
+  file_ = H5Fcreate(tmp_.path().c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
   if (file_ < 0) throw ConfigError(path, "", "cannot create the output file (is the directory writable?)");
   try {
     h5::Handle root = h5::open_group(file_, "/");
@@ -67,7 +68,6 @@ DatasetWriter::DatasetWriter(const std::string& path, const DatasetHeader& heade
     entries_ = H5Gopen2(file_, "entries", H5P_DEFAULT);
   } catch (...) {
     H5Fclose(file_);
-    std::remove(tmp_.c_str());
     throw;
   }
 }
@@ -75,7 +75,6 @@ DatasetWriter::DatasetWriter(const std::string& path, const DatasetHeader& heade
 DatasetWriter::~DatasetWriter() {
   if (entries_ >= 0) H5Gclose(entries_);
   if (file_ >= 0) H5Fclose(file_);
-  if (!committed_) std::remove(tmp_.c_str());
 }
 
 void DatasetWriter::add(const DatasetEntry& e) {
@@ -123,9 +122,8 @@ void DatasetWriter::commit() {
   h5::check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing");
   const herr_t closed = H5Fclose(file_);
   file_ = -1;
-  h5::check(closed, "closing " + tmp_);
-  std::filesystem::rename(tmp_, path_);
-  committed_ = true;
+  h5::check(closed, "closing " + tmp_.path());
+  tmp_.commit();
 }
 
 DatasetReader::DatasetReader(const std::string& path) : path_(path) {

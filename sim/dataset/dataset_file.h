@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/files/temp_file.h"
 #include "sim/tally/table.h"
 
 namespace mcref {
@@ -73,11 +74,11 @@ class DatasetWriter {
   void commit();
 
  private:
-  std::string path_, tmp_;
+  std::string path_;
+  TempFile tmp_;  // <path>.tmp.<pid>, renamed over path_ by commit()
   DatasetHeader header_;
   hid_t file_ = -1, entries_ = -1;
   std::vector<DatasetEntry> rows_;  // parameters only (tables dropped)
-  bool committed_ = false;
 };
 
 class DatasetReader {

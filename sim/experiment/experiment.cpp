@@ -7,6 +7,7 @@
 
 #include "models/core/vec.h"
 #include "sim/experiment/experiment_parts.h"
+#include "sim/files/input_file.h"
 
 namespace mcref {
 
@@ -118,21 +119,31 @@ Experiment parse_experiment(const std::string& text, const std::string& file,
   const auto measures = r.tables("measure");
   if (measures.empty()) r.fail("measure", "at least one [[measure]] table is required");
   for (std::size_t i = 0; i < measures.size(); ++i) e.measures.push_back(read_measure(*measures[i], e, i));
-  for (std::size_t i = 0; i < e.measures.size(); ++i)
-    for (std::size_t j = 0; j < i; ++j)
-      if (e.measures[i].name == e.measures[j].name)
-        throw ConfigError(file, "measure." + std::to_string(i) + ".name",
-                          "\"" + e.measures[i].name + "\" is used twice; give each measure its own name");
+  // A measure writes tables <name> and <name>_<part> (e.g. g1_conditional,
+  // brdf_albedo), so names are plain words and none extends another by '_'.
+  for (std::size_t i = 0; i < e.measures.size(); ++i) {
+    const std::string& name = e.measures[i].name;
+    const std::string key = "measure." + std::to_string(i) + ".name";
+    if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
+                            std::string::npos)
+      throw ConfigError(file, key, "\"" + name + "\" must be a non-empty word of letters, digits, '_' and '-'");
+    for (std::size_t j = 0; j < i; ++j) {
+      const std::string& other = e.measures[j].name;
+      if (name == other)
+        throw ConfigError(file, key, "\"" + name + "\" is used twice; give each measure its own name");
+      const std::string& longer = name.size() > other.size() ? name : other;
+      const std::string& shorter = name.size() > other.size() ? other : name;
+      if (longer.compare(0, shorter.size() + 1, shorter + "_") == 0)
+        throw ConfigError(file, key, "\"" + name + "\" and measure " + std::to_string(j) + "'s \"" + other +
+                                         "\" could name the same table (a measure's tables are <name> and <name>_<part>); rename one");
+    }
+  }
   r.finish();
   return e;
 }
 
 Experiment load_experiment(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path, "", "cannot read the file");
-  std::stringstream buf;
-  buf << in.rdbuf();
-  return parse_experiment(buf.str(), path, overrides);
+  return parse_experiment(read_input_file(path), path, overrides);
 }
 
 }  // namespace mcref

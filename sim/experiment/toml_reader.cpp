@@ -104,7 +104,7 @@ bool TomlReader::boolean(const std::string& key, std::optional<bool> fallback) {
     if (fallback) return *fallback;
     fail(key, "is required (true or false)");
   }
-  std::optional<bool> v = n->value<bool>();
+  std::optional<bool> v = n->value_exact<bool>();  // 1 and 0 are not booleans
   if (!v) fail(key, "must be true or false");
   return *v;
 }

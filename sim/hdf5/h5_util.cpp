@@ -5,6 +5,13 @@
 
 namespace mcref::h5 {
 
+void Handle::close(const std::string& what) {
+  if (id_ < 0) return;
+  const herr_t status = close_(id_);
+  id_ = -1;
+  check(status, what);
+}
+
 void check(herr_t status, const std::string& what) {
   if (status < 0) throw std::runtime_error("HDF5 error while " + what);
 }

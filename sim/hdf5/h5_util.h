@@ -23,6 +23,10 @@ class Handle {
   }
   operator hid_t() const { return id_; }
   bool valid() const { return id_ >= 0; }
+  // Closes now and throws std::runtime_error naming `what` if that fails (a
+  // file's close writes its last metadata: a full disk shows here). The id is
+  // given up either way, so nothing closes it twice.
+  void close(const std::string& what = "closing");
 
  private:
   hid_t id_;

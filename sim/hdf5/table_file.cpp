@@ -14,6 +14,7 @@
 
 #include "mcref_commit.h"  // generated at build time
 #include "sim/experiment/config_error.h"
+#include "sim/files/temp_file.h"
 #include "sim/hdf5/h5_util.h"
 #include "sim/hdf5/table_group.h"
 
@@ -67,31 +68,32 @@ Provenance make_provenance(const std::string& config_text, const std::string& so
 
 void write_table_file(const std::string& path, const TableFile& f) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  const std::string tmp = path + ".tmp." + std::to_string(getpid());
+  TempFile tmp(path);
   try {
-    {
-      h5::Handle fcpl = h5::file_create_plist();
-      h5::Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT), H5Fclose);
-      if (!file.valid()) throw ConfigError(path, "", "cannot create the output file (is the directory writable?)");
-      h5::Handle root = h5::open_group(file, "/");
-      h5::write_string_attr(root, "mcref_format", kFormat);
-      h5::write_int_attr(root, "format_version", kFormatVersion);
-      h5::write_string_attr(root, "mcref_version", f.provenance.mcref_version);
-      h5::write_string_attr(root, "git_commit", f.provenance.git_commit);
-      h5::write_string_attr(root, "created", f.provenance.created);
-      h5::write_string_attr(root, "command_line", f.provenance.command_line);
-      h5::write_int_attr(root, "seed", static_cast<std::int64_t>(f.provenance.seed));
-      h5::write_string_attr(root, "config", f.provenance.config);
-      h5::write_string_attr(root, "source_file", f.provenance.source_file);
-      h5::write_string_attr(root, "conventions", table_conventions());
-      for (const Table& t : f.tables) write_table_group(file, t, 0);
-      h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flushing");
-    }
-    std::filesystem::rename(tmp, path);
-  } catch (...) {
-    std::remove(tmp.c_str());
+    h5::Handle fcpl = h5::file_create_plist();
+    h5::Handle file(H5Fcreate(tmp.path().c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT), H5Fclose);
+    if (!file.valid()) throw ConfigError(path, "", "cannot create the output file (is the directory writable?)");
+    h5::Handle root = h5::open_group(file, "/");
+    h5::write_string_attr(root, "mcref_format", kFormat);
+    h5::write_int_attr(root, "format_version", kFormatVersion);
+    h5::write_string_attr(root, "mcref_version", f.provenance.mcref_version);
+    h5::write_string_attr(root, "git_commit", f.provenance.git_commit);
+    h5::write_string_attr(root, "created", f.provenance.created);
+    h5::write_string_attr(root, "command_line", f.provenance.command_line);
+    h5::write_int_attr(root, "seed", static_cast<std::int64_t>(f.provenance.seed));
+    h5::write_string_attr(root, "config", f.provenance.config);
+    h5::write_string_attr(root, "source_file", f.provenance.source_file);
+    h5::write_string_attr(root, "conventions", table_conventions());
+    for (const Table& t : f.tables) write_table_group(file, t, 0);
+    h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flushing");
+    root.close();
+    file.close("closing");
+  } catch (const ConfigError&) {
     throw;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": writing failed (" + e.what() + "; disk full?)");
   }
+  tmp.commit();
 }
 
 TableFile read_table_file(const std::string& path) {

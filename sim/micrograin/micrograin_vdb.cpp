@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <mutex>
 #include <stdexcept>
 
 #include <openvdb/io/File.h>
 
 #include "models/core/rng.h"
+#include "sim/files/vdb_file.h"
 
 namespace mcref {
 
@@ -31,9 +33,15 @@ MicrograinVoxels micrograin_voxels(const MicrograinGeometry& g, double voxel_siz
   return v;
 }
 
+std::string voxel_count_text(const MicrograinVoxels& v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v.count());  // no integer cast: counts may pass 2^63
+  return buf;
+}
+
 openvdb::FloatGrid::Ptr micrograin_grid(const MicrograinField& f, const MicrograinVoxels& v, std::uint64_t seed) {
   if (v.count() > kMaxMicrograinVoxels)
-    throw std::invalid_argument("the grain grid would hold " + std::to_string(static_cast<long long>(v.count())) +
+    throw std::invalid_argument("the grain grid would hold " + voxel_count_text(v) +
                                 " voxels (more than 2e8); use a larger voxel size or a smaller tile");
   init_openvdb();
   const MicrograinGeometry& g = f.geometry();
@@ -81,9 +89,7 @@ openvdb::FloatGrid::Ptr micrograin_grid(const MicrograinField& f, const Microgra
 
 void write_micrograin_vdb(const std::string& path, const openvdb::FloatGrid::Ptr& grid) {
   init_openvdb();
-  openvdb::io::File file(path);
-  file.write(openvdb::GridPtrVec{grid});
-  file.close();
+  write_vdb_file(path, openvdb::GridCPtrVec{grid});
 }
 
 }  // namespace mcref

@@ -29,6 +29,8 @@ struct MicrograinVoxels {
 };
 // The voxel layout for a requested voxel size (<= 0: radius / 8).
 MicrograinVoxels micrograin_voxels(const MicrograinGeometry& g, double voxel_size);
+// The voxel count for messages ("1.2e+09").
+std::string voxel_count_text(const MicrograinVoxels& v);
 // Largest voxel count export-vdb accepts.
 inline constexpr double kMaxMicrograinVoxels = 2e8;
 

@@ -5,6 +5,7 @@
 #include <mutex>
 
 #include "models/sggx/sggx_distribution.h"
+#include "sim/files/vdb_file.h"
 
 #include <openvdb/io/File.h>
 
@@ -209,10 +210,8 @@ double GridLookup::density_and_sggx(int k, double x, double y, double depth, sgg
 
 void write_vdb(const std::string& path, const DensityGrids& g) {
   init_openvdb();
-  openvdb::GridPtrVec out = g.all_grids();
-  openvdb::io::File file(path);
-  file.write(out);
-  file.close();
+  const openvdb::GridPtrVec grids = g.all_grids();
+  write_vdb_file(path, openvdb::GridCPtrVec(grids.begin(), grids.end()));
 }
 
 }  // namespace mcref::volume

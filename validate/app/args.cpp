@@ -1,3 +1,4 @@
+#include <cerrno>
 #include <cstdlib>
 
 #include "sim/experiment/config_error.h"
@@ -7,8 +8,9 @@ namespace mcref::cli {
 
 long long parse_integer(const std::string& flag, const std::string& v, long long lo, long long hi) {
   char* end = nullptr;
+  errno = 0;
   const long long n = std::strtoll(v.c_str(), &end, 10);
-  if (v.empty() || *end || n < lo || n > hi)
+  if (v.empty() || *end || errno == ERANGE || n < lo || n > hi)
     throw ConfigError("command line", flag, "= " + v + " must be an integer in [" + std::to_string(lo) + ", " +
                                                  std::to_string(hi) + "]");
   return n;

@@ -5,6 +5,7 @@
 #include "sim/dataset/dataset_config.h"
 #include "sim/dataset/dataset_run.h"
 #include "sim/experiment/config_error.h"
+#include "sim/files/output_path.h"
 #include "validate/app/verbs.h"
 
 namespace mcref::cli {
@@ -59,6 +60,7 @@ int dataset(const std::vector<std::string>& raw, const std::string& command_line
   opt.threads = a.threads;
   opt.quiet = a.quiet;
   const DatasetConfig config = load_dataset(a.positional[0]);
+  check_output_file(a.output, {a.positional[0], config.experiment_file});
   const DatasetRunSummary s = run_dataset(config, opt);
   if (s.up_to_date) {
     if (!a.quiet) std::fprintf(stderr, "mcref dataset: %s is up to date (%lld entries)\n", a.output.c_str(),

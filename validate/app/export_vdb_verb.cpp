@@ -7,6 +7,7 @@
 
 #include "sim/experiment/config_error.h"
 #include "sim/experiment/experiment.h"
+#include "sim/files/output_path.h"
 #include "sim/micrograin/micrograin_vdb.h"
 #include "sim/slab/density_grid.h"
 #include "validate/app/verbs.h"
@@ -61,27 +62,26 @@ int export_vdb(const std::vector<std::string>& raw) {
   std::vector<std::string> sets = a.sets;
   if (a.seed >= 0) sets.push_back("run.seed=" + std::to_string(a.seed));
   const Experiment ex = load_experiment(a.positional[0], sets);
-  const std::string tmp = a.output + ".tmp";
+  check_output_file(a.output, {a.positional[0]});
   std::size_t written = 0;
   if (ex.kind == "slab") {
     if (voxel_size > 0) throw ConfigError("command line", "--voxel-size", "applies to micrograin fields; slabs use geometry.lateral_voxels and geometry.depth_voxels");
     const volume::DensityGrids grids(ex.slab);
-    volume::write_vdb(tmp, grids);
+    volume::write_vdb(a.output, grids);
     written = grids.all_grids().size();
   } else if (ex.kind == "micrograin") {
     const MicrograinVoxels v = micrograin_voxels(ex.micrograin, voxel_size);
     if (v.count() > kMaxMicrograinVoxels)
       throw ConfigError("command line", "--voxel-size",
-                        "the grain grid would hold " + std::to_string(static_cast<long long>(v.count())) +
+                        "the grain grid would hold " + voxel_count_text(v) +
                             " voxels (more than 2e8); give a larger --voxel-size (real units) or a smaller geometry.tile");
     const std::uint64_t seed = micrograin_realization_seed(ex.run.seed, 0);
     const MicrograinField field(ex.micrograin, seed);
-    write_micrograin_vdb(tmp, micrograin_grid(field, v, seed));
+    write_micrograin_vdb(a.output, micrograin_grid(field, v, seed));
     written = 1;
   } else {
     throw ConfigError(ex.file, "geometry.kind", "export-vdb writes slab and micrograin grids; \"" + ex.kind + "\" is not supported");
   }
-  if (std::rename(tmp.c_str(), a.output.c_str()) != 0) throw ConfigError("command line", "-o", "cannot write " + a.output);
   if (!a.quiet) std::fprintf(stderr, "mcref export-vdb: %zu grids -> %s\n", written, a.output.c_str());
   return 0;
 }

@@ -1,4 +1,6 @@
 // mcref: the command-line front end; one file per verb (validate/app/*_verb.cpp).
+#include <hdf5.h>
+
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -26,6 +28,9 @@ const char* kUsage =
 }  // namespace
 
 int main(int argc, char** argv) {
+  // HDF5's exit-time cleanup closes again a file whose close failed (a full
+  // disk) and crashes; every mcref file is closed explicitly, so it is not needed.
+  H5dont_atexit();
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::fputs(kUsage, args.empty() ? stderr : stdout);

@@ -3,6 +3,7 @@
 
 #include "sim/dataset/dataset_run.h"
 #include "sim/experiment/config_error.h"
+#include "sim/files/output_path.h"
 #include "validate/app/verbs.h"
 
 namespace mcref::cli {
@@ -24,6 +25,7 @@ int merge(const std::vector<std::string>& raw) {
   }
   if (a.positional.empty()) throw ConfigError("command line", "", "mcref merge needs shard files (see --help)");
   if (a.output.empty()) throw ConfigError("command line", "-o", "an output file is required (-o DATA.h5)");
+  check_output_file(a.output, a.positional);
   const std::int64_t n = merge_datasets(a.positional, a.output, a.quiet);
   if (!a.quiet)
     std::fprintf(stderr, "mcref merge: %lld entries from %zu files -> %s\n", static_cast<long long>(n),

@@ -1,11 +1,9 @@
-#include <unistd.h>
-
 #include <cstdio>
-#include <filesystem>
 
 #include "sim/experiment/config_error.h"
 #include "sim/experiment/experiment.h"
 #include "sim/experiment/simulate.h"
+#include "sim/files/output_path.h"
 #include "sim/hdf5/table_file.h"
 #include "validate/app/verbs.h"
 
@@ -37,9 +35,7 @@ int simulate(const std::vector<std::string>& raw, const std::string& command_lin
   if (a.seed >= 0) sets.push_back("run.seed=" + std::to_string(a.seed));
   const Experiment ex = load_experiment(a.positional[0], sets);
   // Fail before simulating if the output cannot be written.
-  const std::filesystem::path parent = std::filesystem::absolute(a.output).parent_path();
-  if (!std::filesystem::is_directory(parent) || access(parent.c_str(), W_OK) != 0)
-    throw ConfigError(a.output, "-o", "the output directory does not exist or is not writable");
+  check_output_file(a.output, {a.positional[0]});
   SimulateOptions opt;
   opt.threads = a.threads;
   opt.quiet = a.quiet;

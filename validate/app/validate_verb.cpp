@@ -1,6 +1,7 @@
 #include <cstdio>
 
 #include "sim/experiment/config_error.h"
+#include "sim/files/output_path.h"
 #include "validate/app/verbs.h"
 #include "validate/suite.h"
 
@@ -28,6 +29,7 @@ int validate(const std::vector<std::string>& raw, const std::string& command_lin
   if (a.positional.size() != 1) throw ConfigError("command line", "", "mcref validate needs exactly one SUITE.toml (see --help)");
   if (a.output.empty()) throw ConfigError("command line", "-o", "an output directory is required (-o OUTDIR)");
   const Suite suite = load_suite(a.positional[0]);
+  check_output_directory(a.output, {a.positional[0]});
   SuiteOptions o;
   o.out_dir = a.output;
   o.threads = a.threads;

@@ -1,0 +1,134 @@
+// What mcref promises about data (README, "Data safety"), kept under faults
+// and hostile input: an output never replaces an input, outputs are checked
+// before any work, a full disk gives one line and exit 1 (no crash) and keeps
+// the old file, temporaries never outlive their writer, and values that do
+// not fit their type are refused.
+#include <gtest/gtest.h>
+#include <sys/mount.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "tests/validate/app/cli_fixture.h"
+
+namespace fs = std::filesystem;
+using namespace mcref_test;
+
+namespace {
+
+// A small slab experiment (writes a few hundred kB of tables with 2 batches).
+std::string slab_experiment() {
+  return "[geometry]\nkind = \"slab\"\n[[geometry.layer]]\nphase = \"isotropic\"\noptical_thickness = 1.0\nalbedo = 0.5\n"
+         "[run]\nseed = 1\nbatches = 2\n[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [0, 30, 60]\n"
+         "theta_o_bins = 30\nphi_bins = 36\nsamples = 200\n";
+}
+
+// A tmpfs of `kib` KiB mounted on `dir` (root only); false if it cannot be mounted.
+bool mount_tiny_tmpfs(const fs::path& dir, int kib) {
+  fs::create_directories(dir);
+  const std::string opts = "size=" + std::to_string(kib) + "k";
+  return mount("tmpfs", dir.c_str(), "tmpfs", 0, opts.c_str()) == 0;
+}
+
+}  // namespace
+
+TEST_F(Cli, OutputNamingAnInputIsRefused) {
+  const std::string exp = write("x.toml", experiment());
+  const std::string before = slurp(exp);
+  for (const std::string& out : {exp, path("./x.toml"), path("sub/../x.toml")}) {
+    fs::create_directories(path("sub"));
+    expect_one_line_error(mcref("simulate " + quote(exp) + " -o " + quote(out) + " --quiet"), {"-o", "is the input"});
+    EXPECT_EQ(slurp(exp), before) << "the experiment was changed through " << out;
+  }
+  fs::create_symlink(exp, path("link.toml"));
+  expect_one_line_error(mcref("simulate " + quote(path("link.toml")) + " -o " + quote(exp) + " --quiet"),
+                        {"is the input"});
+  expect_one_line_error(mcref("export-vdb " + quote(exp) + " -o " + quote(exp)), {"is the input"});
+  EXPECT_EQ(slurp(exp), before);
+  // merge: the output may not be one of the shards.
+  ASSERT_EQ(mcref("simulate " + quote(exp) + " -o " + quote(path("t.h5")) + " --quiet").exit_code, 0);
+  const std::string shard = slurp(path("t.h5"));
+  expect_one_line_error(mcref("merge " + quote(path("t.h5")) + " -o " + quote(path("t.h5")) + " --quiet"),
+                        {"is the input"});
+  EXPECT_EQ(slurp(path("t.h5")), shard);
+}
+
+TEST_F(Cli, OutputLocationsAreCheckedBeforeAnyWork) {
+  const std::string exp = write("x.toml", experiment());
+  const std::string missing = path("missing/dir/x.h5");
+  // The same rule for every verb: mcref creates no directory for an output file.
+  expect_one_line_error(mcref("simulate " + quote(exp) + " -o " + quote(missing) + " --quiet"), {missing, "does not exist"});
+  expect_one_line_error(mcref("export-vdb " + quote(write("s.toml", slab_experiment())) + " -o " + quote(missing)),
+                        {missing, "does not exist"});
+  EXPECT_FALSE(fs::exists(path("missing")));
+  // An existing directory as an output file, and a file as validate's output directory.
+  expect_one_line_error(mcref("simulate " + quote(exp) + " -o " + quote(dir_.string()) + " --quiet"), {"is a directory"});
+  write("suite.toml", "[suite]\nname = \"s\"\n[[case]]\nname = \"c\"\nexperiment = \"x.toml\"\n");
+  write("afile", "keep");
+  expect_one_line_error(mcref("validate " + quote(path("suite.toml")) + " -o " + quote(path("afile")) + " --quiet"),
+                        {"afile", "not a directory"});
+  EXPECT_EQ(slurp(path("afile")), "keep");
+  for (const std::string& s : stray({"x.toml", "s.toml", "suite.toml", "afile"})) ADD_FAILURE() << "left behind: " << s;
+}
+
+TEST_F(Cli, BadValuesAreRefusedNotClamped) {
+  // Booleans are booleans: 1 is not true.
+  expect_rejected(slab_experiment(), {"geometry.delta_transmission", "true or false"}, "--set geometry.delta_transmission=1");
+  const std::string exp = write("x.toml", experiment());
+  expect_one_line_error(mcref("simulate " + quote(exp) + " -o " + quote(path("o.h5")) + " --seed 99999999999999999999"),
+                        {"--seed", "99999999999999999999"});
+  // A directory given as the experiment.
+  expect_one_line_error(mcref("simulate " + quote(dir_.string()) + " -o " + quote(path("o.h5"))), {"is a directory"});
+  // --voxel-size far too small: the count is reported as a number, never a wrapped integer.
+  const Result r = mcref("export-vdb " + quote(exp) + " -o " + quote(path("g.vdb")) + " --voxel-size 1e-6");
+  expect_one_line_error(r, {"--voxel-size", "voxels"});
+  EXPECT_EQ(r.err.find("-9223372036854775808"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("o.h5")));
+}
+
+TEST_F(Cli, MeasureNamesThatCouldCollideAreRefusedBeforeWork) {
+  const std::string tau = "quantity = \"tau_plus\"\ntheta_i_deg = [30]\nsamples = 2000\n";
+  const std::string g1 = "quantity = \"g1\"\ntheta_i_deg = [30]\nsamples = 2000\n";
+  expect_rejected(experiment("tau0 = 0.5\nbeta = 0.8\n", "", g1 + "\n[[measure]]\nname = \"g1_conditional\"\n" + tau),
+                  {"bad.toml", "measure.1.name", "g1_conditional"});
+  for (const std::string& name : {"a/b", "a.b", ""})
+    expect_rejected(experiment("tau0 = 0.5\nbeta = 0.8\n", "", "name = \"" + name + "\"\n" + tau),
+                    {"bad.toml", "measure.0.name"});
+}
+
+TEST_F(Cli, StaleTemporariesOfDeadWritersAreRemoved) {
+  const std::string exp = write("x.toml", experiment());
+  // A pid that no longer runs: a child that has exited and been reaped.
+  const pid_t dead = fork();
+  if (dead == 0) _exit(0);
+  ASSERT_GT(dead, 0);
+  waitpid(dead, nullptr, 0);
+  write("o.h5.tmp." + std::to_string(dead), "half-written");
+  write("o.h5.tmp." + std::to_string(getpid()), "a live writer's");  // this test process runs
+  ASSERT_EQ(mcref("simulate " + quote(exp) + " -o " + quote(path("o.h5")) + " --quiet").exit_code, 0);
+  EXPECT_FALSE(fs::exists(path("o.h5.tmp." + std::to_string(dead))));
+  EXPECT_TRUE(fs::exists(path("o.h5.tmp." + std::to_string(getpid()))));
+}
+
+TEST_F(Cli, FullDiskGivesOneLineAndKeepsTheOldFile) {
+  const fs::path disk = dir_ / "disk";
+  if (geteuid() != 0 || !mount_tiny_tmpfs(disk, 96)) GTEST_SKIP() << "cannot mount a small tmpfs here (needs root)";
+  const std::string exp = write("s.toml", slab_experiment());
+  const std::string small = write("small.toml", experiment());
+  const std::string out = (disk / "t.h5").string();
+  ASSERT_EQ(mcref("simulate " + quote(small) + " -o " + quote(out) + " --quiet").exit_code, 0);
+  const std::string good = slurp(out);
+  const Result r = mcref("simulate " + quote(exp) + " -o " + quote(out) + " --quiet");
+  EXPECT_EQ(r.exit_code, 1) << r.err;  // not a crash (139), not bad input (2)
+  expect_one_line_error(r, {out});
+  EXPECT_EQ(slurp(out), good) << "the old file was replaced";
+  const Result v = mcref("export-vdb " + quote(exp) + " -o " + quote((disk / "g.vdb").string()) +
+                         " --set geometry.lateral_voxels=128 --set geometry.depth_voxels=128");
+  EXPECT_EQ(v.exit_code, 1) << v.err;
+  expect_one_line_error(v, {"g.vdb"});
+  for (const auto& e : fs::directory_iterator(disk))
+    EXPECT_EQ(e.path().filename(), "t.h5") << "left on the full disk: " << e.path();
+  umount(disk.c_str());
+}
