@@ -138,6 +138,7 @@ Experiment parse_experiment(const std::string& text, const std::string& file,
                                          "\" could name the same table (a measure's tables are <name> and <name>_<part>); rename one");
     }
   }
+  if (e.kind == "micrograin") check_micrograin_directions(e);
   r.finish();
   return e;
 }

@@ -9,6 +9,8 @@
 namespace mcref {
 
 void read_micrograin_geometry(TomlReader& geometry, Experiment& e);
+// After the measures: refuses directions whose rays would wrap the tile too often.
+void check_micrograin_directions(const Experiment& e);
 void read_slab_geometry(TomlReader& geometry, Experiment& e);
 void read_spheres_geometry(TomlReader& geometry, Experiment& e);
 // Optional [material] table of micrograin transport (issue #3); `table` may be null.

@@ -2,6 +2,7 @@
 
 #include <hdf5_hl.h>
 
+#include <cmath>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -68,6 +69,18 @@ Table read_table_group(hid_t parent, const std::string& name) {
   t.sum = h5::read_doubles(group, "sum");
   t.sum_sq = h5::read_doubles(group, "sum_sq");
   if (t.sum.size() != t.cells() || t.sum_sq.size() != t.cells()) throw std::runtime_error("table shape mismatch");
+  // value and stderr are derived from the sums; a file whose stored ones are
+  // missing or differ (bit for bit, NaN as NaN) is damaged or not mcref's.
+  for (const char* derived : {"value", "stderr"}) {
+    if (!h5::exists(group, derived)) throw std::runtime_error("table " + name + " has no " + derived + " dataset");
+    const std::vector<double> stored = h5::read_doubles(group, derived);
+    if (stored.size() != t.cells()) throw std::runtime_error("table " + name + ": " + derived + " has the wrong shape");
+    for (std::size_t i = 0; i < stored.size(); ++i) {
+      const double expect = derived[0] == 'v' ? t.value(i) : t.stderr_of(i);
+      if (!(stored[i] == expect || (std::isnan(stored[i]) && std::isnan(expect))))
+        throw std::runtime_error("table " + name + ": " + derived + " does not match its sums (damaged?)");
+    }
+  }
   H5O_info_t info;
   h5::check(H5Oget_info(group, &info), "reading a group's attributes");
   for (hsize_t i = 0; i < info.num_attrs; ++i) {

@@ -70,6 +70,11 @@ SlabLayer read_layer(TomlReader& r) {
     l.density = tau / (l.thickness * l.profile.mean());  // so that T rho mean(profile) = tau
   } else {
     l.density = r.number("density", {0, 1e9, false, false}, 1.0);
+    // The walk's cost grows with the optical thickness: the same bound as optical_thickness.
+    const double tau = l.optical_thickness();
+    if (!(tau <= 1e6))
+      r.fail("density", "gives an optical thickness T rho mean(profile) of " + std::to_string(tau) +
+                            ", more than 1e6; lower density or thickness");
   }
   if (l.is_sggx()) {
     l.alpha = r.number("alpha", {0, 1e3, true, false});

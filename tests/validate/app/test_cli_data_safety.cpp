@@ -4,6 +4,7 @@
 // the old file, temporaries never outlive their writer, and values that do
 // not fit their type are refused.
 #include <gtest/gtest.h>
+#include <hdf5.h>
 #include <sys/mount.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -131,4 +132,43 @@ TEST_F(Cli, FullDiskGivesOneLineAndKeepsTheOldFile) {
   for (const auto& e : fs::directory_iterator(disk))
     EXPECT_EQ(e.path().filename(), "t.h5") << "left on the full disk: " << e.path();
   umount(disk.c_str());
+}
+
+TEST_F(Cli, CostCliffsAreRefusedUpFront) {
+  // Micrograin rays so grazing that they would wrap the tile past the bound.
+  expect_rejected(experiment("tau0 = 0.5\nbeta = 0.8\n", "",
+                             "quantity = \"tau_plus\"\ntheta_i_deg = [89.999999]\nsamples = 2000\n"),
+                  {"bad.toml", "measure.0.theta_i_deg", "too grazing"});
+  // A slab whose density gives an optical thickness past the walk's bound.
+  std::string dense = slab_experiment();
+  dense.replace(dense.find("optical_thickness = 1.0"), 23, "thickness = 1e3\ndensity = 1e4");
+  expect_rejected(dense, {"bad.toml", "density", "1e6"});
+}
+
+TEST_F(Cli, InfoRefusesTablesWhoseValuesAreMissingOrDoNotMatchTheirSums) {
+  const std::string exp = write("x.toml", experiment());
+  ASSERT_EQ(mcref("simulate " + quote(exp) + " -o " + quote(path("t.h5")) + " --quiet").exit_code, 0);
+  fs::copy_file(path("t.h5"), path("novalue.h5"));
+  fs::copy_file(path("t.h5"), path("changed.h5"));
+  {
+    const hid_t f = H5Fopen(path("novalue.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    ASSERT_GE(H5Ldelete(f, "tau_plus/value", H5P_DEFAULT), 0);
+    H5Fclose(f);
+  }
+  {
+    const hid_t f = H5Fopen(path("changed.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t d = H5Dopen2(f, "tau_plus/value", H5P_DEFAULT);
+    const double v = 0.123456;
+    const hsize_t one = 1, at = 0;
+    const hid_t mem = H5Screate_simple(1, &one, nullptr), file_space = H5Dget_space(d);
+    H5Sselect_elements(file_space, H5S_SELECT_SET, 1, &at);
+    ASSERT_GE(H5Dwrite(d, H5T_NATIVE_DOUBLE, mem, file_space, H5P_DEFAULT, &v), 0);
+    H5Sclose(file_space);
+    H5Sclose(mem);
+    H5Dclose(d);
+    H5Fclose(f);
+  }
+  expect_one_line_error(mcref("info " + quote(path("novalue.h5"))), {"novalue.h5", "no value"});
+  expect_one_line_error(mcref("info " + quote(path("changed.h5"))), {"changed.h5", "does not match"});
 }
