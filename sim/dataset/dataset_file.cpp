@@ -9,6 +9,7 @@
 
 #include "sim/experiment/config_error.h"
 #include "sim/files/temp_file.h"
+#include "sim/hdf5/file_seal.h"
 #include "sim/hdf5/h5_util.h"
 #include "sim/hdf5/table_group.h"
 #include "sim/hdf5/table_file.h"
@@ -123,12 +124,14 @@ void DatasetWriter::commit() {
   const herr_t closed = H5Fclose(file_);
   file_ = -1;
   h5::check(closed, "closing " + tmp_.path());
+  seal_file(tmp_.path());
   tmp_.commit();
 }
 
 DatasetReader::DatasetReader(const std::string& path) : path_(path) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   if (!std::filesystem::exists(path)) throw ConfigError(path, "", "no such file");
+  check_seal(path);  // before HDF5 reads a byte of a damaged file
   if (H5Fis_hdf5(path.c_str()) <= 0) throw ConfigError(path, "", "not an HDF5 file");
   file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (file_ < 0) throw ConfigError(path, "", "cannot open the HDF5 file");

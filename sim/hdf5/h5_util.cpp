@@ -3,6 +3,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "sim/hdf5/file_seal.h"
+
 namespace mcref::h5 {
 
 void Handle::close(const std::string& what) {
@@ -19,6 +21,7 @@ void check(herr_t status, const std::string& what) {
 Handle file_create_plist() {
   Handle p(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
   check(H5Pset_obj_track_times(p, false), "disabling time tracking");
+  check(H5Pset_userblock(p, kSealBlockBytes), "reserving the seal's user block");
   return p;
 }
 

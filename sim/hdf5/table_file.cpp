@@ -15,6 +15,7 @@
 #include "mcref_commit.h"  // generated at build time
 #include "sim/experiment/config_error.h"
 #include "sim/files/temp_file.h"
+#include "sim/hdf5/file_seal.h"
 #include "sim/hdf5/h5_util.h"
 #include "sim/hdf5/table_group.h"
 
@@ -88,6 +89,7 @@ void write_table_file(const std::string& path, const TableFile& f) {
     h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flushing");
     root.close();
     file.close("closing");
+    seal_file(tmp.path());
   } catch (const ConfigError&) {
     throw;
   } catch (const std::exception& e) {
@@ -99,6 +101,7 @@ void write_table_file(const std::string& path, const TableFile& f) {
 TableFile read_table_file(const std::string& path) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   if (!std::filesystem::exists(path)) throw ConfigError(path, "", "no such file");
+  check_seal(path);  // before HDF5 reads a byte of a damaged file
   if (H5Fis_hdf5(path.c_str()) <= 0) throw ConfigError(path, "", "not an HDF5 file");
   h5::Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (!file.valid()) throw ConfigError(path, "", "cannot open the HDF5 file");

@@ -63,9 +63,12 @@ class Cli : public ::testing::Test {
 
   // Runs mcref with the given (already quoted) arguments, capturing stdout
   // and stderr in files of the scratch directory.
-  Result mcref(const std::string& args) const {
+  Result mcref(const std::string& args) const { return shell(quote(MCREF_BINARY) + " " + args); }
+
+  // Runs a shell command line the same way.
+  Result shell(const std::string& command) const {
     const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    const std::string cmd = quote(MCREF_BINARY) + " " + args + " > " + quote(out) + " 2> " + quote(err);
+    const std::string cmd = command + " > " + quote(out) + " 2> " + quote(err);
     const int status = std::system(cmd.c_str());
     Result r;
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
