@@ -77,7 +77,9 @@ SlabLayer read_layer(TomlReader& r) {
                             ", more than 1e6; lower density or thickness");
   }
   if (l.is_sggx()) {
-    l.alpha = r.number("alpha", {0, 1e3, true, false});
+    // S has eigenvalues 1 and alpha^2 (SpongeCake Eq. 3-4): below 1e-4 a tilted
+    // S is no longer positive definite, or sigma no longer accurate, in double precision.
+    l.alpha = r.number("alpha", {1e-4, 1e3, false, false});
     if (r.has("orientation") && r.has("orientation_deg"))
       r.fail("orientation_deg", "give either orientation or orientation_deg, not both");
     if (r.has("orientation")) {

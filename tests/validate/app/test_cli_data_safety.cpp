@@ -190,3 +190,18 @@ TEST_F(Cli, EditedOrDamagedTablesAreRefused) {
   }
   expect_one_line_error(mcref("info " + quote(path("novalue.h5"))), {"novalue.h5", "no value"});
 }
+
+// SGGX alpha at the ends of its range on a tilted fibre layer (the worst
+// conditioned S): the lower end runs, below it is refused before any work.
+TEST_F(Cli, SggxAlphaRangeEndsRunOrAreRefused) {
+  std::string fiber = slab_experiment();
+  fiber.replace(fiber.find("phase = \"isotropic\""), 19, "phase = \"sggx_fiber\"\norientation = [1, 1, 1]\nalpha = 1e-4");
+  for (const char* alpha : {"1e-4", "1e3"}) {
+    const Result r = mcref("simulate " + quote(write("f.toml", fiber)) + " -o " + quote(path("f.h5")) +
+                           " --quiet --set geometry.layer.0.alpha=" + alpha);
+    EXPECT_EQ(r.exit_code, 0) << "alpha " << alpha << ": " << r.err;
+    fs::remove(path("f.h5"));
+  }
+  fs::remove(path("f.toml"));
+  expect_rejected(fiber, {"bad.toml", "alpha", "1e-05"}, "--set geometry.layer.0.alpha=1e-5");
+}
