@@ -17,6 +17,7 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
   double rel2 = 0;
   for (std::size_t i = 0; i < sim.size(); ++i) {
     if (!std::isfinite(sim[i]) || !std::isfinite(model[i]) || !std::isfinite(se[i])) {
+      if (std::isnan(sim[i])) ++c.empty_cells;
       if (std::isfinite(sim[i]) && !std::isfinite(model[i])) ++c.model_undefined;
       continue;
     }
@@ -82,13 +83,15 @@ Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance) {
                     c.mismatched_exact_cells + c.gross_mismatches);
       return {exact ? "FAIL" : "measured", buf};
     }
-    return {"FAIL", "no cell could be compared"};
+    return {"FAIL", "no cell could be compared" +
+                        (c.empty_cells ? " (" + std::to_string(c.empty_cells) + " empty cells: a batch had no sample)" : std::string())};
   }
   // Zero-variance cells beside cells with error bars (e.g. a rare cell that
   // stayed empty in every batch) carry no error bar to judge by: noted only.
   std::string note;
   if (c.mismatched_exact_cells > 0)
     note = "; " + std::to_string(c.mismatched_exact_cells) + " zero-variance cells differ slightly or are empty (not judged)";
+  if (c.empty_cells > 0) note += "; " + std::to_string(c.empty_cells) + " empty cells (NaN: a batch had no sample) not compared";
   if (c.model_undefined > 0) note += "; model undefined on " + std::to_string(c.model_undefined) + " cells";
   if (exact) {
     const double bound = sidak_z_bound(alpha, static_cast<double>(c.cells));

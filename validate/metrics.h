@@ -18,6 +18,7 @@ struct Comparison {
   std::size_t exact_cells = 0;   // zero-variance cells where sim equals the model (to 1e-6 relative)
   std::size_t mismatched_exact_cells = 0;  // zero-variance cells that differ slightly, or empty bins
   std::size_t gross_mismatches = 0;  // non-empty zero-variance cells more than 1 % off the model
+  std::size_t empty_cells = 0;       // cells the simulation left empty (NaN: a batch had no sample)
   std::size_t model_undefined = 0;   // cells with a simulated value where the model is NaN
   std::vector<double> z;         // per cell (NaN where not compared)
   double chi2_per_dof() const { return cells ? chi2 / static_cast<double>(cells) : 0; }

@@ -13,6 +13,7 @@ namespace mcref {
 // which grows with the count of summed terms (up to ~n eps sum_sq): a
 // variance below 64 eps sum_sq / min(n, 64) counts as 0.
 inline double stderr_of_mean(double sum, double sum_sq, double n) {
+  if (std::isnan(sum) || std::isnan(sum_sq)) return NAN;  // an empty cell: no error bar, not a zero one
   const double mean = sum / n;
   double var = std::fmax(0.0, (sum_sq - n * mean * mean) / (n - 1));
   if (var <= 64 * 2.220446049250313e-16 * sum_sq / std::fmin(n, 64.0)) var = 0;

@@ -77,7 +77,9 @@ Table read_table_group(hid_t parent, const std::string& name) {
     if (stored.size() != t.cells()) throw std::runtime_error("table " + name + ": " + derived + " has the wrong shape");
     for (std::size_t i = 0; i < stored.size(); ++i) {
       const double expect = derived[0] == 'v' ? t.value(i) : t.stderr_of(i);
-      if (!(stored[i] == expect || (std::isnan(stored[i]) && std::isnan(expect))))
+      // (Files from before empty cells had NaN stderr stored 0 there.)
+      const bool empty_cell = std::isnan(expect) && (std::isnan(stored[i]) || (derived[0] == 's' && stored[i] == 0));
+      if (!(stored[i] == expect || empty_cell))
         throw std::runtime_error("table " + name + ": " + derived + " does not match its sums (damaged?)");
     }
   }

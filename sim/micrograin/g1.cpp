@@ -20,13 +20,14 @@ Estimator g1_estimator() {
     const bool folded = !g.anisotropic();
     Table marginal(m.name, "g1", {theta_points("theta_i", m.theta_i), phi_points("phi_i", m.phi_i)});
     marginal.units = "1";
+    marginal.attributes["empty_cells"] = kEmptyCellsNote;
     marginal.description = "G1(i): visible projected grain area toward i / projected area of the height field's grain surface facing i";
     Table conditional(m.name + "_conditional", "g1_conditional",
                       {theta_points("theta_i", m.theta_i), phi_points("phi_i", m.phi_i),
                        theta_bins("theta_m", m.theta_m_bins), phi_bins("phi_m_rel", m.phi_m_bins, folded)});
     conditional.units = "1";
     conditional.description = "G1(i, m): fraction of height-field points with normal m (sampled by projected area toward i) unoccluded toward i";
-    conditional.attributes["empty_cells"] = "NaN where a batch had no sample in the cell";
+    conditional.attributes["empty_cells"] = kEmptyCellsNote;
     return std::vector<Table>{marginal, conditional};
   };
   e.add_batch = [](const MicrograinField& f, const Experiment&, const Measure& m, const StreamKey& key, std::vector<Table>& tables) {

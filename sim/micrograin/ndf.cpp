@@ -12,6 +12,7 @@ Estimator ndf_estimator() {
   e.make_tables = [](const Measure& m, const Experiment&) {
     Table t(m.name, "ndf", {theta_bins("theta_m", m.theta_m_bins), phi_bins("phi_m", m.phi_m_bins, false)});
     t.units = "1/sr";
+    t.attributes["empty_cells"] = kEmptyCellsNote;
     t.description = "NDF D(m), cosine-weighted bin average, normalised over the grain-covered area (Eq. 14)";
     return std::vector<Table>{t};
   };

@@ -15,6 +15,7 @@ Estimator pore_visibility_estimator() {
     std::vector<Axis> axes{theta_points("theta_i", m.theta_i), theta_points("theta_o", m.theta_o), phi_points("phi", m.phi)};
     Table joint(m.name, "pore_visibility", axes);
     joint.units = "1";
+    joint.attributes["empty_cells"] = kEmptyCellsNote;
     joint.description = "P(pore point visible from i and from o | base point in a pore)";
     joint.attributes["phi"] = "relative azimuth phi_o - phi_i; 0 = back toward the light";
     std::ostringstream phi_i;
@@ -23,6 +24,7 @@ Estimator pore_visibility_estimator() {
     joint.attributes["phi_i"] = phi_i.str();  // azimuth of i (rad)
     Table product(m.name + "_independent", "pore_visibility_independent", axes);
     product.units = "1";
+    product.attributes["empty_cells"] = kEmptyCellsNote;
     product.attributes = joint.attributes;
     product.description = "P(visible from i | pore) * P(visible from o | pore), per batch (the independence assumption of Eq. 23)";
     return std::vector<Table>{joint, product};

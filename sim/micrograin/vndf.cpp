@@ -14,6 +14,7 @@ Estimator vndf_estimator() {
             {theta_points("theta_i", m.theta_i), phi_points("phi_i", m.phi_i), theta_bins("theta_m", m.theta_m_bins),
              phi_bins("phi_m_rel", m.phi_m_bins, folded)});
     t.units = "1/sr";
+    t.attributes["empty_cells"] = kEmptyCellsNote;
     t.description = "density of the normal at the first grain hit from i, per steradian, over grain hits (bin average)";
     t.attributes["phi_m_rel"] = folded ? "phi_m - phi_i folded into [0, pi] (isotropic field)" : "phi_m - phi_i in [0, 2pi)";
     return std::vector<Table>{t};

@@ -12,6 +12,10 @@
 
 namespace mcref {
 
+// The `empty_cells` attribute of tables whose cells can be empty: a ratio
+// whose denominator was 0 in some batch (tau0 near 0 or 1, few samples).
+constexpr const char* kEmptyCellsNote = "NaN value and NaN stderr where a batch had no sample in the cell";
+
 // One axis of a table: either bins (edges, n+1 values) or a list of points
 // (e.g. the incident directions the user asked for).
 struct Axis {

@@ -6,6 +6,7 @@
 
 #include "models/core/fp_mode.h"
 #include "models/core/rng.h"
+#include "models/core/statistics.h"
 #include "models/core/vec.h"
 #include "validate/metrics.h"
 
@@ -105,4 +106,19 @@ TEST(Metrics, UnderflowDoesNotDependOnFlushToZero) {
   for (std::size_t i = 0; i < student_cells.size(); ++i) EXPECT_EQ(b.z[i], b_ftz.z[i]) << "cell " << i;
   EXPECT_EQ(b.chi2, b_ftz.chi2);
 #endif
+}
+
+// Empty cells (NaN value and NaN stderr: a batch had no sample) are left out
+// of the comparison and counted in the note; a NaN sum gives a NaN stderr, not 0.
+TEST(Metrics, EmptyCellsAreCountedNotCompared) {
+  EXPECT_TRUE(std::isnan(stderr_of_mean(NAN, NAN, 3)));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const Comparison c = compare({1.0, nan, 3.0}, {0.1, nan, 0.1}, {1.0, 2.0, 3.0}, 32);
+  EXPECT_EQ(c.cells, 2u);
+  EXPECT_EQ(c.empty_cells, 1u);
+  const Verdict v = judge(c, true, 1e-3, 0);
+  EXPECT_EQ(v.status, "pass");
+  EXPECT_NE(v.reason.find("1 empty cells"), std::string::npos) << v.reason;
+  const Verdict none = judge(compare({nan}, {nan}, {1.0}, 32), true, 1e-3, 0);
+  EXPECT_NE(none.reason.find("1 empty cells"), std::string::npos) << none.reason;
 }

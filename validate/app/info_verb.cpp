@@ -1,6 +1,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <string>
 
 #include "sim/experiment/config_error.h"
 #include "sim/hdf5/table_file.h"
@@ -27,12 +28,15 @@ int info(const std::vector<std::string>& raw) {
       axes << (axes.tellp() > 0 ? " x " : "") << ax.name << "[" << ax.size() << (ax.kind == Axis::Kind::Bins ? " bins" : "") << "]";
     }
     double worst = 0;
+    std::size_t empty = 0;
     for (std::size_t i = 0; i < t.cells(); ++i) {
       const double v = t.value(i), e = t.stderr_of(i);
+      if (std::isnan(v)) ++empty;
       if (std::isfinite(v) && std::isfinite(e) && std::fabs(v) > 0) worst = std::fmax(worst, e / std::fabs(v));
     }
-    std::printf("  %-28s %-18s %s  batches=%lld  max rel. stderr=%.3g  [%s]\n", t.name.c_str(), t.quantity.c_str(),
-                axes.str().c_str(), static_cast<long long>(t.batches), worst, t.units.c_str());
+    const std::string empties = empty ? "  empty cells=" + std::to_string(empty) : "";
+    std::printf("  %-28s %-18s %s  batches=%lld  max rel. stderr=%.3g%s  [%s]\n", t.name.c_str(), t.quantity.c_str(),
+                axes.str().c_str(), static_cast<long long>(t.batches), worst, empties.c_str(), t.units.c_str());
   }
   std::printf("config:\n%s\n", p.config.c_str());
   return 0;

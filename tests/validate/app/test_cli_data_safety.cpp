@@ -5,13 +5,15 @@
 // not fit their type are refused.
 #include <gtest/gtest.h>
 #include <hdf5.h>
-#include <vector>
+
 #include <sys/mount.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "tests/validate/app/cli_fixture.h"
 
@@ -204,4 +206,28 @@ TEST_F(Cli, SggxAlphaRangeEndsRunOrAreRefused) {
   }
   fs::remove(path("f.toml"));
   expect_rejected(fiber, {"bad.toml", "alpha", "1e-05"}, "--set geometry.layer.0.alpha=1e-5");
+}
+
+// A ratio estimate whose denominator was 0 in a batch (tau0 = 1e-9: no grain
+// to sample a normal from) is an empty cell: NaN, with a NaN stderr (0 would
+// claim an exact value), and `info` counts such cells.
+TEST_F(Cli, EmptyCellsAreNaNWithoutAnErrorBar) {
+  const std::string exp = write("e.toml", experiment("tau0 = 1e-9\nbeta = 0.8\n", "", "quantity = \"ndf\"\nsamples = 1\n"));
+  ASSERT_EQ(mcref("simulate " + quote(exp) + " -o " + quote(path("e.h5")) + " --quiet").exit_code, 0);
+  const Result r = mcref("info " + quote(path("e.h5")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("empty cells="), std::string::npos) << r.out;
+  const hid_t f = H5Fopen(path("e.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  for (const char* name : {"ndf/value", "ndf/stderr"}) {
+    const hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
+    const hid_t space = H5Dget_space(d);
+    std::vector<double> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+    H5Sclose(space);
+    EXPECT_GE(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()), 0);
+    H5Dclose(d);
+    for (double x : v) EXPECT_TRUE(std::isnan(x)) << name << " holds " << x;
+  }
+  EXPECT_GT(H5Aexists_by_name(f, "ndf", "empty_cells", H5P_DEFAULT), 0);
+  H5Fclose(f);
 }
