@@ -47,7 +47,7 @@ double SpherePacking::expected_count() const {
 double diffusion_depth_mfp(double c, double threshold) {
   if (c >= 1.0) return 4.0 / (3.0 * kOneMinusG * threshold);  // conservative: T ~ 4 / (3 (1-g) D)
   const double L = 1.0 / std::sqrt(3.0 * (1.0 - c) * kOneMinusG);
-  return L * std::log(2.0 / threshold) + 2.0;
+  return std::max(L * std::log(2.0 / threshold) + 2.0, std::log(2.0 / threshold));
 }
 
 std::vector<Vec3> place_poisson(const SpherePacking& p, Rng& rng) {

@@ -52,11 +52,18 @@ struct SpherePacking {
   double expected_count() const;
 };
 
-// Diffusion estimate of the depth (mean free paths) at which a slab of
-// albedo c with the Lambert-sphere phase function (g = -4/9) transmits less
-// than `threshold`: L ln(2 / threshold) + 2 with diffusion length
-// L = 1 / sqrt(3 (1 - c)(1 - g)) (and ~ 0.92 / threshold at c = 1).
+// The depth (mean free paths) at which a slab of albedo c with the
+// Lambert-sphere phase function (g = -4/9) transmits less than `threshold`:
+// the diffusion estimate L ln(2 / threshold) + 2 with diffusion length
+// L = 1 / sqrt(3 (1 - c)(1 - g)) (~ 0.92 / threshold at c = 1), but at least
+// ln(2 / threshold), where the unscattered light at normal incidence,
+// exp(-depth), is threshold / 2: at low albedo it dominates, and diffusion
+// ignores it.
 double diffusion_depth_mfp(double c, double threshold);
+
+// Free flights longer than this many tile periods make the walk wrap the
+// periodic tile as many times per flight: the cost cliff of dilute packings.
+inline constexpr double kMaxTilesPerFreeFlight = 100;
 
 // One realization of the centres (radius units, r = 1), x, y in [0, tile),
 // z in [-depth, 0], shifted so that the highest centre is at z = 0.

@@ -56,6 +56,12 @@ void read_spheres_geometry(TomlReader& g, Experiment& e) {
                                          " (diffusion estimate); set depth_mfp or raise the threshold");
   }
   p.tile = g.number("tile", {8, 1e4, false, false}, 100.0);
+  const double mfp = 1 / p.extinction();  // in radii
+  if (p.placement != SpherePlacement::volumetric && mfp > kMaxTilesPerFreeFlight * p.tile)
+    g.fail("volume_fraction", "is " + format("%g", p.volume_fraction) + ": the mean free path, " + format("%.3g", mfp) +
+                                  " radii, is " + format("%.3g", mfp / p.tile) + " tiles, so every free flight would wrap the tile " +
+                                  "that often (at most " + format("%g", kMaxTilesPerFreeFlight) + "). Raise tile or volume_fraction, " +
+                                  "or use placement = \"volumetric\", the same medium's f -> 0 limit");
   if (p.placement != SpherePlacement::volumetric && p.expected_count() > kMaxSpheres)
     g.fail("tile", "gives ~" + format("%.3g", p.expected_count()) + " spheres (depth " +
                        format("%.0f", p.depth()) + " radii); at most 2e7 are allowed: reduce tile or depth_mfp");

@@ -231,3 +231,15 @@ TEST_F(Cli, EmptyCellsAreNaNWithoutAnErrorBar) {
   EXPECT_GT(H5Aexists_by_name(f, "ndf", "empty_cells", H5P_DEFAULT), 0);
   H5Fclose(f);
 }
+
+// Dilute sphere packings whose free flights would wrap the tile more than 100
+// times are refused before any work, pointing to the volumetric limit.
+TEST_F(Cli, DiluteSpherePackingsAreRefusedUpFront) {
+  const std::string spheres =
+      "[geometry]\nkind = \"spheres\"\nalbedo = 0.5\nvolume_fraction = 1e-6\n[run]\nseed = 1\nbatches = 2\n"
+      "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [0]\ntheta_o_bins = 4\nphi_bins = 4\nsamples = 100\n";
+  expect_rejected(spheres, {"bad.toml", "volume_fraction", "volumetric"});
+  std::string volumetric = spheres;
+  volumetric.replace(volumetric.find("albedo"), 0, "placement = \"volumetric\"\n");
+  EXPECT_EQ(mcref("simulate " + quote(write("v.toml", volumetric)) + " -o " + quote(path("v.h5")) + " --quiet").exit_code, 0);
+}
