@@ -154,3 +154,18 @@ def test_evaluate_model_on_a_table():
     assert np.allclose(model[:, 0], mcref.micrograin.tau_plus_eq22(0.4, 0.8, theta), rtol=1e-12, atol=0)
     with pytest.raises(mcref.ConfigError, match="unknown model"):
         mcref.evaluate_model("no_such_model", tab, t.provenance["config"])
+
+
+def test_to_xarray():
+    xr = pytest.importorskip("xarray")  # optional dependency
+    t = mcref.simulate(TAU_PLUS, seed=3)["ndf"]
+    ds = t.to_xarray()
+    assert isinstance(ds, xr.Dataset)
+    assert np.array_equal(ds["value"].values, t.value) and np.array_equal(ds["sum_sq"].values, t.sum_sq)
+    assert list(ds["value"].dims) == t.axis_names
+    assert np.array_equal(ds["theta_m_edges"].values, t.axis("theta_m").edges)
+
+
+def test_a_path_given_as_text_is_pointed_to_simulate_file():
+    with pytest.raises(mcref.ConfigError, match="simulate_file"):
+        mcref.simulate("validate/experiments/tau_plus.toml")

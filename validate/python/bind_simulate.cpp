@@ -60,7 +60,13 @@ std::pair<std::string, std::string> config_text(const py::object& config) {
     s << root;
     return {s.str(), kDictFile};
   }
-  if (py::isinstance<py::str>(config)) return {config.cast<std::string>(), kTextFile};
+  if (py::isinstance<py::str>(config)) {
+    const std::string text = config.cast<std::string>();
+    if (text.find('\n') == std::string::npos && text.find('=') == std::string::npos && text.size() > 5 &&
+        text.compare(text.size() - 5, 5, ".toml") == 0)
+      throw ConfigError("<python>", "config", "\"" + text + "\" looks like a file name; use mcref.simulate_file(path)");
+    return {text, kTextFile};
+  }
   throw ConfigError("<python>", "config", "must be a dict or TOML text (use open(path).read() or simulate_file(path))");
 }
 

@@ -117,6 +117,32 @@ void bind_tables(py::module_& m) {
       .def_property_readonly("stderr", [](const Table& t) { return shaped(t, t.stderrs()); })
       .def_property_readonly("sum", [](const Table& t) { return shaped(t, t.sum); })
       .def_property_readonly("sum_sq", [](const Table& t) { return shaped(t, t.sum_sq); })
+      .def("to_xarray", [](const Table& t) {
+        py::module_ xr = py::module_::import("xarray");  // optional: ImportError without it
+        py::list dims;
+        py::dict coords, data, attrs;
+        for (const Axis& a : t.axes) {
+          dims.append(a.name);
+          std::vector<double> c(a.size());
+          for (std::size_t i = 0; i < c.size(); ++i) c[i] = a.centre(i);
+          coords[py::str(a.name)] = py::make_tuple(a.name, py::array_t<double>(c.size(), c.data()),
+                                                  py::dict(py::arg("unit") = a.unit));
+          if (a.kind == Axis::Kind::Bins)
+            coords[py::str(a.name + "_edges")] = py::array_t<double>(a.values.size(), a.values.data());
+        }
+        py::tuple d = py::tuple(dims);
+        data["value"] = py::make_tuple(d, shaped(t, t.values()));
+        data["stderr"] = py::make_tuple(d, shaped(t, t.stderrs()));
+        data["sum"] = py::make_tuple(d, shaped(t, t.sum));
+        data["sum_sq"] = py::make_tuple(d, shaped(t, t.sum_sq));
+        attrs["name"] = t.name;
+        attrs["quantity"] = t.quantity;
+        attrs["units"] = t.units;
+        attrs["description"] = t.description;
+        attrs["batches"] = t.batches;
+        for (const auto& [k, v] : t.attributes) attrs[py::str(k)] = v;
+        return xr.attr("Dataset")(data, py::arg("coords") = coords, py::arg("attrs") = attrs);
+      }, "The table as an xarray.Dataset (value, stderr, sum, sum_sq over the axes; needs xarray).")
       .def("__repr__", [](const Table& t) {
         std::string s = "<mcref.Table " + t.name + " (" + t.quantity + ", " + t.units + "), axes";
         for (const Axis& a : t.axes) s += " " + a.name + "[" + std::to_string(a.size()) + "]";
