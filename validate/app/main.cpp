@@ -20,6 +20,8 @@ const char* kUsage =
     "  validate SUITE.toml -o OUTDIR           run a validation suite, write tables, plots, report\n"
     "  info TABLES.h5                          print the tables, axes, sample counts and provenance\n"
     "  export-vdb EXPERIMENT.toml -o OUT.vdb   write a slab's layer density grids (OpenVDB)\n"
+    "  export-brdf TABLES.h5 --table NAME --format merl -o OUT.binary\n"
+    "                                          write a BRDF table as a MERL file\n"
     "  dataset DATASET.toml -o DATA.h5         simulate every entry of a parameter sweep (--shard K/N)\n"
     "  merge SHARD.h5... -o DATA.h5            combine dataset shards into one file\n"
     "\n"
@@ -45,9 +47,10 @@ int main(int argc, char** argv) {
     if (verb == "validate") return mcref::cli::validate(args, command_line);
     if (verb == "info") return mcref::cli::info(args);
     if (verb == "export-vdb") return mcref::cli::export_vdb(args);
+    if (verb == "export-brdf") return mcref::cli::export_brdf(args);
     if (verb == "dataset") return mcref::cli::dataset(args, command_line);
     if (verb == "merge") return mcref::cli::merge(args);
-    std::fprintf(stderr, "mcref: error: unknown verb '%s' (allowed: simulate, validate, info, export-vdb, dataset, merge)\n", verb.c_str());
+    std::fprintf(stderr, "mcref: error: unknown verb '%s' (allowed: simulate, validate, info, export-vdb, export-brdf, dataset, merge)\n", verb.c_str());
     return 2;
   } catch (const mcref::ConfigError& e) {
     std::fprintf(stderr, "mcref: error: %s\n", e.what());

@@ -10,6 +10,7 @@ int simulate(const std::vector<std::string>& args, const std::string& command_li
 int validate(const std::vector<std::string>& args, const std::string& command_line);
 int info(const std::vector<std::string>& args);
 int export_vdb(const std::vector<std::string>& args);
+int export_brdf(const std::vector<std::string>& args);
 int dataset(const std::vector<std::string>& args, const std::string& command_line);
 int merge(const std::vector<std::string>& args);
 

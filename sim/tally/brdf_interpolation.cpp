@@ -1,0 +1,83 @@
+#include "sim/tally/brdf_interpolation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "models/core/vec.h"
+#include "sim/experiment/config_error.h"
+
+namespace mcref {
+
+namespace {
+
+std::string deg(double rad) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g", rad * 180 / kPi);
+  return b;
+}
+
+// Lower index and weight of x among increasing points p (held constant outside).
+void locate(const std::vector<double>& p, double x, std::size_t& i, double& w) {
+  if (p.size() == 1 || x <= p.front()) { i = 0; w = 0; return; }
+  if (x >= p.back()) { i = p.size() - 2; w = 1; return; }
+  i = static_cast<std::size_t>(std::upper_bound(p.begin(), p.end(), x) - p.begin()) - 1;
+  w = (x - p[i]) / (p[i + 1] - p[i]);
+}
+
+}  // namespace
+
+BrdfInterpolation::BrdfInterpolation(const Table& t, const std::string& file) {
+  const std::string where = file + ": table '" + t.name + "'";
+  auto refuse = [&](const std::string& why) { throw ConfigError(where, "", why); };
+  if (t.quantity != "brdf") refuse("is a " + t.quantity + " table, not a brdf table");
+  std::vector<std::string> names;
+  for (const Axis& a : t.axes) names.push_back(a.name);
+  const bool channel = names.size() == 5 && names[4] == "channel";
+  if (!(names.size() >= 4 && names[0] == "theta_i" && names[1] == "phi_i" && names[2] == "theta_o" && names[3] == "phi" &&
+        (names.size() == 4 || channel)))
+    refuse("axes must be theta_i, phi_i, theta_o, phi[, channel]");
+  if (t.axes[1].size() != 1) refuse("has " + std::to_string(t.axes[1].size()) + " incident azimuths; MERL holds isotropic BRDFs (one phi_i)");
+  channels_ = channel ? static_cast<int>(t.axes[4].size()) : 1;
+  if (channels_ != 1 && channels_ != 3) refuse("has " + std::to_string(channels_) + " channels (1 or 3 allowed)");
+  ti_ = t.axes[0].values;
+  for (std::size_t k = 0; k < t.axes[2].size(); ++k) to_.push_back(t.axes[2].centre(k));
+  for (std::size_t k = 0; k < t.axes[3].size(); ++k) ph_.push_back(t.axes[3].centre(k));
+  double gap = 0;
+  for (std::size_t k = 1; k < ti_.size(); ++k) gap = std::max(gap, ti_[k] - ti_[k - 1]);
+  const double d = kPi / 180;
+  if (ti_.size() < 2 || ti_.front() > 5 * d + 1e-12 || ti_.back() < 75 * d - 1e-12 || gap > 15 * d + 1e-12)
+    refuse("is too coarse for export: theta_i must run from <= 5 deg to >= 75 deg in steps <= 15 deg (has " +
+           std::to_string(ti_.size()) + " angles, " + deg(ti_.front()) + " to " + deg(ti_.back()) + " deg, largest step " +
+           deg(gap) + " deg)");
+  if (to_.size() < 8) refuse("is too coarse for export: at least 8 theta_o bins are needed (has " + std::to_string(to_.size()) + ")");
+  if (ph_.size() < 8 || t.axes[3].values.back() - t.axes[3].values.front() < kPi - 1e-9)
+    refuse("is too coarse for export: at least 8 phi bins over [0, pi] are needed (has " + std::to_string(ph_.size()) + ")");
+  values_ = t.values();
+}
+
+double BrdfInterpolation::operator()(double theta_i, double theta_o, double phi, int c) const {
+  if (!(std::cos(theta_i) > 0) || !(std::cos(theta_o) > 0)) return 0;
+  phi = std::fabs(std::remainder(phi, 2 * kPi));  // fold into [0, pi]
+  if (channels_ == 1) c = 0;
+  std::size_t a, b, e;
+  double wa, wb, we;
+  locate(ti_, theta_i, a, wa);
+  locate(to_, theta_o, b, wb);
+  locate(ph_, phi, e, we);
+  const std::size_t na = ti_.size(), nb = to_.size(), ne = ph_.size();
+  auto at = [&](std::size_t i, std::size_t j, std::size_t k) {
+    return values_[((i * nb + j) * ne + k) * channels_ + c];  // phi_i axis has size 1
+  };
+  double f = 0;
+  for (int x = 0; x < 2; ++x)
+    for (int y = 0; y < 2; ++y)
+      for (int z = 0; z < 2; ++z) {
+        const double w = (x ? wa : 1 - wa) * (y ? wb : 1 - wb) * (z ? we : 1 - we);
+        if (w == 0) continue;
+        f += w * at(std::min(a + x, na - 1), std::min(b + y, nb - 1), std::min(e + z, ne - 1));
+      }
+  return f;
+}
+
+}  // namespace mcref

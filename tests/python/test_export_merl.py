@@ -1,0 +1,119 @@
+# mcref export-brdf --format merl: the file read back by an independent numpy
+# reader (MERL's BRDFRead.cpp layout), its size, and its values at grid points
+# against a numpy trilinear interpolation of the table; coarse tables refused.
+import os
+
+import numpy as np
+import pytest
+
+import mcref
+
+SCALE = np.array([1.0, 1.15, 1.66]) / 1500  # MERL's RED/GREEN/BLUE_SCALE
+
+
+def brdf_config(theta_o_bins=8, phi_bins=8, theta_i_deg=list(range(0, 90, 10))):
+    return {
+        "geometry": {"kind": "micrograin", "tau0": 0.4, "beta": 1.0, "tile": 30},
+        "material": {"grain": {"type": "lambertian", "albedo": [0.2, 0.6, 0.4]},
+                     "base": {"type": "lambertian", "albedo": 0.5}},
+        "run": {"seed": 12, "batches": 2},
+        "measure": [{"quantity": "brdf", "theta_i_deg": theta_i_deg, "theta_o_bins": theta_o_bins,
+                     "phi_bins": phi_bins, "samples": 400}],
+    }
+
+
+def read_merl(path):
+    """Independent reader: header 3 x int32, then 3 channel blocks of doubles times MERL's scale."""
+    with open(path, "rb") as f:
+        dims = np.frombuffer(f.read(12), dtype="<i4")
+        data = np.frombuffer(f.read(), dtype="<f8")
+    return dims, data.reshape(3, dims[0], dims[1], dims[2]) * SCALE[:, None, None, None]
+
+
+def merl_directions(i, j, k):
+    """theta_h = (i/90)^2 pi/2, theta_d = j pi/180, phi_d = k pi/180; wi = R_y(theta_h) d, wo = reflect(wi, h)."""
+    th, td, pd = (i / 90.0) ** 2 * np.pi / 2, j * np.pi / 180, k * np.pi / 180
+    d = np.stack([np.sin(td) * np.cos(pd), np.sin(td) * np.sin(pd), np.cos(td)], -1)
+    c, s = np.cos(th)[:, None], np.sin(th)[:, None]
+    wi = np.stack([d[:, 0] * c[:, 0] + d[:, 2] * s[:, 0], d[:, 1], -d[:, 0] * s[:, 0] + d[:, 2] * c[:, 0]], -1)
+    h = np.stack([s[:, 0], 0 * th, c[:, 0]], -1)
+    wo = 2 * np.sum(wi * h, -1, keepdims=True) * h - wi
+    return wi, wo
+
+
+def lerp_weights(points, x):
+    """Index of the lower point and weight, held constant outside the points."""
+    x = np.clip(x, points[0], points[-1])
+    i = np.clip(np.searchsorted(points, x, side="right") - 1, 0, len(points) - 2)
+    return i, (x - points[i]) / (points[i + 1] - points[i])
+
+
+def trilinear(table, ti, to, phi):
+    v = table.value[:, 0]  # theta_i, theta_o, phi, channel
+    pts = [table.axis("theta_i").centres, table.axis("theta_o").centres, table.axis("phi").centres]
+    idx = [lerp_weights(p, x) for p, x in zip(pts, (ti, to, phi))]
+    out = 0
+    for a in (0, 1):
+        for b in (0, 1):
+            for c in (0, 1):
+                w = 1.0
+                ii = []
+                for bit, (i, t) in zip((a, b, c), idx):
+                    w = w * (t if bit else 1 - t)
+                    ii.append(i + bit)
+                out = out + w[:, None] * v[ii[0], ii[1], ii[2]]
+    return out  # (n, 3)
+
+
+def test_merl_round_trip(cli, tmp_path):
+    tables = mcref.simulate(brdf_config(), seed=1)
+    h5 = tmp_path / "brdf.h5"
+    mcref.write_tables(str(h5), tables)
+    out = tmp_path / "brdf.binary"
+    code, _, err = cli("export-brdf", str(h5), "--table", "brdf", "--format", "merl", "-o", str(out), "--quiet")
+    assert code == 0, err
+    assert os.path.getsize(out) == 3 * 4 + 90 * 90 * 180 * 3 * 8
+    dims, rgb = read_merl(out)
+    assert list(dims) == [90, 90, 180]
+    rng = np.random.default_rng(0)
+    i, j, k = rng.integers(0, 90, 4000), rng.integers(0, 90, 4000), rng.integers(0, 180, 4000)
+    wi, wo = merl_directions(i, j, k)
+    above = (wi[:, 2] > 1e-9) & (wo[:, 2] > 1e-9)
+    got = rgb[:, i, j, k].T
+    assert np.all(got[~above & (wi[:, 2] < -1e-9)] == 0)
+    ti, to = np.arccos(np.clip(wi[:, 2], -1, 1)), np.arccos(np.clip(wo[:, 2], -1, 1))
+    phi = np.abs(np.remainder(np.arctan2(wo[:, 1], wo[:, 0]) - np.arctan2(wi[:, 1], wi[:, 0]) + np.pi, 2 * np.pi) - np.pi)
+    expected = trilinear(tables["brdf"], ti[above], to[above], phi[above])
+    assert above.sum() > 1000
+    assert np.allclose(got[above], expected, rtol=1e-10, atol=1e-14)
+    assert np.mean(got[above] > 0) > 0.9  # the export is not empty (a few bins of this short run are 0)
+
+
+@pytest.mark.parametrize("kw,why", [
+    ({"theta_o_bins": 4}, "at least 8 theta_o bins"),
+    ({"phi_bins": 4}, "at least 8 phi bins"),
+    ({"theta_i_deg": [0, 30, 60, 80]}, "steps <= 15 deg"),
+])
+def test_coarse_tables_refused(cli, tmp_path, kw, why):
+    h5 = tmp_path / "coarse.h5"
+    cfg = brdf_config(**kw)
+    cfg["measure"][0]["samples"] = 10
+    mcref.write_tables(str(h5), mcref.simulate(cfg))
+    out = tmp_path / "x.binary"
+    code, _, err = cli("export-brdf", str(h5), "--table", "brdf", "--format", "merl", "-o", str(out))
+    assert code == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and "too coarse" in lines[0] and why in lines[0], err
+    assert not out.exists()
+
+
+def test_bad_arguments(cli, tmp_path):
+    h5 = tmp_path / "t.h5"
+    cfg = brdf_config()
+    cfg["measure"][0]["samples"] = 10
+    mcref.write_tables(str(h5), mcref.simulate(cfg))
+    for args, msg in [(["--table", "nope", "--format", "merl"], "no table 'nope'"),
+                      (["--table", "brdf", "--format", "exr"], "not a known format"),
+                      (["--table", "brdf_albedo", "--format", "merl"], "not a brdf table")]:
+        code, _, err = cli("export-brdf", str(h5), *args, "-o", str(tmp_path / "o.binary"))
+        assert code == 2 and msg in err and len(err.strip().splitlines()) == 1, err

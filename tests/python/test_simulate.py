@@ -1,0 +1,171 @@
+# mcref.simulate returns exactly what `mcref simulate` writes; bad configs raise
+# the CLI's one-line message; written tables are read by `mcref info`.
+import os
+
+import numpy as np
+import pytest
+
+import mcref
+
+TAU_PLUS = """
+[geometry]
+kind = "micrograin"
+tau0 = 0.4
+beta = 0.8
+tile = 40
+
+[run]
+seed = 5
+batches = 3
+
+[[measure]]
+quantity = "tau_plus"
+theta_i_deg = [0, 40, 80]
+samples = 2000
+
+[[measure]]
+quantity = "ndf"
+theta_m_bins = 6
+phi_m_bins = 4
+samples = 3000
+"""
+
+TAU_PLUS_DICT = {
+    "geometry": {"kind": "micrograin", "tau0": 0.4, "beta": 0.8, "tile": 40},
+    "run": {"seed": 5, "batches": 3},
+    "measure": [
+        {"quantity": "tau_plus", "theta_i_deg": [0, 40, 80], "samples": 2000},
+        {"quantity": "ndf", "theta_m_bins": 6, "phi_m_bins": 4, "samples": 3000},
+    ],
+}
+
+
+def same_tables(a, b):
+    assert sorted(a.names) == sorted(b.names)  # files list groups by name
+    for name in a.names:
+        x, y = a[name], b[name]
+        assert x.batches == y.batches and x.axis_names == y.axis_names
+        for k in ("sum", "sum_sq", "value", "stderr"):
+            assert np.array_equal(getattr(x, k), getattr(y, k)), (name, k)
+        for ax, ay in zip(x.axes, y.axes):
+            assert np.array_equal(ax.centres, ay.centres)
+
+
+def test_simulate_equals_cli_bit_for_bit(cli, tmp_path):
+    cfg = tmp_path / "exp.toml"
+    cfg.write_text(TAU_PLUS)
+    out = tmp_path / "cli.h5"
+    code, _, err = cli("simulate", str(cfg), "-o", str(out), "--seed", "77", "--threads", "2", "--quiet")
+    assert code == 0, err
+    from_cli = mcref.read_tables(str(out))
+    from_text = mcref.simulate(TAU_PLUS, seed=77, threads=1)
+    from_dict = mcref.simulate(TAU_PLUS_DICT, seed=77, threads=2)
+    from_file = mcref.simulate_file(str(cfg), seed=77)
+    same_tables(from_cli, from_text)
+    same_tables(from_cli, from_dict)
+    same_tables(from_cli, from_file)
+    assert from_text.provenance["seed"] == 77
+    # A different seed gives different tables (the comparison can fail).
+    other = mcref.simulate(TAU_PLUS, seed=78)
+    assert not np.array_equal(other["tau_plus"].sum, from_cli["tau_plus"].sum)
+
+
+def test_float_keys_round_trip_through_dict():
+    # A dict's floats reach the experiment exactly (the canonical TOML text is re-parsed).
+    tau0 = 0.1 + 0.2  # 0.30000000000000004
+    text = mcref.parse_config(dict(TAU_PLUS_DICT, geometry={"kind": "micrograin", "tau0": tau0, "beta": 0.8, "tile": 40}))
+    line = [l for l in text.splitlines() if l.strip().startswith("tau0")][0]
+    assert float(line.split("=")[1]) == tau0
+
+
+BAD = [
+    ('tau0 = 0.4', 'tau0 = 1.5'),
+    ('samples = 2000', 'samples = 2000\nsampels = 3'),
+    ('quantity = "tau_plus"', 'quantity = "tau_minus"'),
+    ('batches = 3', 'batches = "three"'),
+    ('kind = "micrograin"', 'kind = "micrograin'),
+]
+
+
+@pytest.mark.parametrize("old,new", BAD)
+def test_bad_configs_raise_the_cli_message(cli, tmp_path, old, new):
+    cfg = tmp_path / "bad.toml"
+    cfg.write_text(TAU_PLUS.replace(old, new))
+    code, _, err = cli("simulate", str(cfg), "-o", str(tmp_path / "x.h5"), "--quiet")
+    assert code == 2
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("mcref: error: ")
+    with pytest.raises(mcref.ConfigError) as e:
+        mcref.simulate_file(str(cfg))
+    assert "mcref: error: " + str(e.value) == lines[0]
+    assert "\n" not in str(e.value)
+    # From text, the same message with the file named <string>.
+    with pytest.raises(mcref.ConfigError) as e2:
+        mcref.simulate(cfg.read_text())
+    assert str(e2.value) == lines[0][len("mcref: error: "):].replace(str(cfg), "<string>", 1)
+    assert not (tmp_path / "x.h5").exists()
+
+
+def test_bad_dict_value_names_the_key():
+    with pytest.raises(mcref.ConfigError, match=r"^<dict>: key 'geometry.tau0': .*\(0, 1\)"):
+        mcref.simulate(dict(TAU_PLUS_DICT, geometry={"kind": "micrograin", "tau0": 2.0, "beta": 0.8}))
+    with pytest.raises(mcref.ConfigError, match=r"key 'run.seed'.*not a TOML value"):
+        mcref.simulate(dict(TAU_PLUS_DICT, run={"seed": object()}))
+
+
+def test_write_tables_is_read_by_info_and_back(cli, tmp_path):
+    t = mcref.simulate(TAU_PLUS, seed=3)
+    path = tmp_path / "py.h5"
+    mcref.write_tables(str(path), t)
+    code, out, err = cli("info", str(path))
+    assert code == 0, err
+    assert "tau_plus" in out and "ndf" in out
+    same_tables(t, mcref.read_tables(str(path)))
+    assert not [p for p in os.listdir(tmp_path) if ".tmp" in p]  # no temporaries left
+
+
+def test_write_new_table_from_arrays(cli, tmp_path):
+    edges = np.linspace(0, np.pi / 2, 5)
+    s = np.arange(4.0)
+    tab = mcref.Table("mine", "tau_plus", [mcref.Axis.bins("theta_i", "rad", edges)], s, s * s / 2 + 1, batches=2,
+                      units="1", description="made in Python")
+    path = tmp_path / "mine.h5"
+    mcref.write_tables(str(path), [tab], config="# none", seed=9)
+    code, out, err = cli("info", str(path))
+    assert code == 0, err and "mine" in out
+    back = mcref.read_tables(str(path))["mine"]
+    assert np.array_equal(back.value, s / 2)
+    assert np.array_equal(back.axis("theta_i").edges, edges)
+    with pytest.raises(mcref.ConfigError, match="shape"):
+        mcref.Table("bad", "tau_plus", [mcref.Axis.bins("theta_i", "rad", edges)], np.zeros(3), np.zeros(3), batches=1)
+
+
+def test_write_refuses_a_directory(tmp_path):
+    t = mcref.simulate(TAU_PLUS, seed=3)
+    with pytest.raises(mcref.ConfigError):
+        mcref.write_tables(str(tmp_path), t)
+
+
+def test_evaluate_model_on_a_table():
+    t = mcref.simulate(TAU_PLUS, seed=3)
+    tab = t["tau_plus"]
+    model = mcref.evaluate_model("tau_plus_eq22", tab, t.provenance["config"])
+    theta = tab.axis("theta_i").centres
+    assert np.allclose(model[:, 0], mcref.micrograin.tau_plus_eq22(0.4, 0.8, theta), rtol=1e-12, atol=0)
+    with pytest.raises(mcref.ConfigError, match="unknown model"):
+        mcref.evaluate_model("no_such_model", tab, t.provenance["config"])
+
+
+def test_to_xarray():
+    xr = pytest.importorskip("xarray")  # optional dependency
+    t = mcref.simulate(TAU_PLUS, seed=3)["ndf"]
+    ds = t.to_xarray()
+    assert isinstance(ds, xr.Dataset)
+    assert np.array_equal(ds["value"].values, t.value) and np.array_equal(ds["sum_sq"].values, t.sum_sq)
+    assert list(ds["value"].dims) == t.axis_names
+    assert np.array_equal(ds["theta_m_edges"].values, t.axis("theta_m").edges)
+
+
+def test_a_path_given_as_text_is_pointed_to_simulate_file():
+    with pytest.raises(mcref.ConfigError, match="simulate_file"):
+        mcref.simulate("validate/experiments/tau_plus.toml")

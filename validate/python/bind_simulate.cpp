@@ -1,0 +1,165 @@
+// mcref.simulate (experiment -> tables, as `mcref simulate`) and
+// mcref.evaluate_model (a suite model on the cells of a table).
+#include <toml++/toml.h>
+
+#include <sstream>
+
+#include "sim/experiment/config_error.h"
+#include "sim/experiment/experiment.h"
+#include "sim/experiment/simulate.h"
+#include "sim/hdf5/table_file.h"
+#include "validate/model_evaluation.h"
+#include "validate/python/bindings.h"
+
+namespace mcref::python {
+
+namespace {
+
+const char* kDictFile = "<dict>";
+const char* kTextFile = "<string>";
+
+toml::table to_toml_table(const py::handle& dict, const std::string& key);
+toml::array to_toml_array(const py::handle& list, const std::string& key);
+
+// One Python value as a TOML node (bool before int: bool is an int in Python).
+template <typename Insert>
+void insert_value(const py::handle& v, const std::string& key, Insert insert) {
+  if (py::isinstance<py::bool_>(v)) insert(toml::value<bool>(v.cast<bool>()));
+  else if (py::isinstance<py::int_>(v)) insert(toml::value<std::int64_t>(v.cast<std::int64_t>()));
+  else if (py::isinstance<py::float_>(v)) insert(toml::value<double>(v.cast<double>()));
+  else if (py::isinstance<py::str>(v)) insert(toml::value<std::string>(v.cast<std::string>()));
+  else if (py::isinstance<py::dict>(v)) insert(to_toml_table(v, key));
+  else if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) insert(to_toml_array(v, key));
+  else if (py::hasattr(v, "tolist")) insert_value(v.attr("tolist")(), key, insert);  // numpy arrays and scalars
+  else throw ConfigError(kDictFile, key, "value of Python type " + std::string(py::str(v.get_type().attr("__name__"))) +
+                                             " is not a TOML value (bool, int, float, str, list, dict)");
+}
+
+toml::table to_toml_table(const py::handle& dict, const std::string& key) {
+  toml::table t;
+  for (auto item : dict.cast<py::dict>()) {
+    const std::string k = py::str(item.first);
+    const std::string full = key.empty() ? k : key + "." + k;
+    insert_value(item.second, full, [&](auto&& node) { t.insert_or_assign(k, std::move(node)); });
+  }
+  return t;
+}
+
+toml::array to_toml_array(const py::handle& list, const std::string& key) {
+  toml::array a;
+  std::size_t i = 0;
+  for (auto item : list) insert_value(item, key + "." + std::to_string(i++), [&](auto&& node) { a.push_back(std::move(node)); });
+  return a;
+}
+
+// A dict, TOML text, or a path to a TOML file -> (text, file name for messages).
+std::pair<std::string, std::string> config_text(const py::object& config) {
+  if (py::isinstance<py::dict>(config)) {
+    const toml::table root = to_toml_table(config, "");
+    std::ostringstream s;
+    s << root;
+    return {s.str(), kDictFile};
+  }
+  if (py::isinstance<py::str>(config)) {
+    const std::string text = config.cast<std::string>();
+    if (text.find('\n') == std::string::npos && text.find('=') == std::string::npos && text.size() > 5 &&
+        text.compare(text.size() - 5, 5, ".toml") == 0)
+      throw ConfigError("<python>", "config", "\"" + text + "\" looks like a file name; use mcref.simulate_file(path)");
+    return {text, kTextFile};
+  }
+  throw ConfigError("<python>", "config", "must be a dict or TOML text (use open(path).read() or simulate_file(path))");
+}
+
+TableFile run(const Experiment& ex, int threads, bool quiet, const std::string& call) {
+  SimulateOptions opt;
+  opt.threads = threads;
+  opt.quiet = quiet;
+  TableFile out;
+  {
+    py::gil_scoped_release release;
+    out.tables = simulate(ex, opt);
+  }
+  out.provenance = make_provenance(ex.text, ex.file, ex.run.seed, call);
+  return out;
+}
+
+std::vector<std::string> overrides(std::vector<std::string> sets, py::object seed) {
+  if (!seed.is_none()) {
+    const long long s = seed.cast<long long>();
+    if (s < 0) throw ConfigError("<python>", "seed", "= " + std::to_string(s) + " must be an integer in [0, 9223372036854775807]");
+    sets.push_back("run.seed=" + std::to_string(s));
+  }
+  return sets;
+}
+
+}  // namespace
+
+void bind_simulate(py::module_& m) {
+  m.def("simulate", [](py::object config, py::object seed, int threads, std::vector<std::string> sets, bool quiet) {
+    const auto [text, file] = config_text(config);
+    const Experiment ex = parse_experiment(text, file, overrides(sets, seed));
+    if (threads < 0 || threads > 1024) throw ConfigError("<python>", "threads", "= " + std::to_string(threads) + " must be an integer in [0, 1024]");
+    return run(ex, threads, quiet, "python: mcref.simulate");
+  }, py::arg("config"), py::arg("seed") = py::none(), py::arg("threads") = 0,
+        py::arg("sets") = std::vector<std::string>{}, py::arg("quiet") = true,
+        "Simulates an experiment given as a dict or as TOML text, with the keys of the\n"
+        "experiment files (README: Experiment files). seed overrides run.seed (as --seed);\n"
+        "threads: worker threads, 0 = run.threads (tables are identical for any count);\n"
+        "sets: 'key=value' overrides (as --set). Returns a TableFile whose tables are\n"
+        "bit-identical to what `mcref simulate` writes for the same config and seed.\n"
+        "Bad input raises mcref.ConfigError with the CLI's one-line message (the file is\n"
+        "named '<dict>' or '<string>').");
+
+  m.def("simulate_file", [](const std::string& path, py::object seed, int threads, std::vector<std::string> sets, bool quiet) {
+    const Experiment ex = load_experiment(path, overrides(sets, seed));
+    if (threads < 0 || threads > 1024) throw ConfigError("<python>", "threads", "= " + std::to_string(threads) + " must be an integer in [0, 1024]");
+    return run(ex, threads, quiet, "python: mcref.simulate_file " + path);
+  }, py::arg("path"), py::arg("seed") = py::none(), py::arg("threads") = 0,
+        py::arg("sets") = std::vector<std::string>{}, py::arg("quiet") = true,
+        "Same as simulate() for an experiment file: errors name the file exactly as `mcref simulate` does.");
+
+  m.def("parse_config", [](py::object config) {
+    const auto [text, file] = config_text(config);
+    return parse_experiment(text, file).text;
+  }, py::arg("config"), "Validates a config (dict or TOML text) and returns its canonical TOML text.");
+
+  m.def("models", [](const std::string& quantity, const std::string& kind) {
+    std::vector<py::dict> out;
+    for (const ModelInfo& i : models_for(quantity, kind)) {
+      py::dict d;
+      d["name"] = i.name;
+      d["quantity"] = i.quantity;
+      d["exact"] = i.exact;
+      d["description"] = i.description;
+      d["kind"] = i.kind;
+      d["component"] = i.component;
+      out.push_back(d);
+    }
+    return out;
+  }, py::arg("quantity"), py::arg("kind") = "micrograin", "The suite models of a table quantity for a geometry kind.");
+
+  m.def("evaluate_model", [](const std::string& model, const Table& table, py::object config) {
+    const auto [text, file] = config_text(config);
+    const Experiment ex = parse_experiment(text, file);
+    std::vector<double> v;
+    {
+      py::gil_scoped_release release;
+      try {
+        v = evaluate_model(model, table, ex);
+      } catch (const std::invalid_argument& e) {
+        throw ConfigError("<python>", "model", e.what());
+      }
+    }
+    std::vector<py::ssize_t> shape;
+    for (std::size_t s : table.shape()) shape.push_back(static_cast<py::ssize_t>(s));
+    py::array_t<double> a(shape);
+    std::copy(v.begin(), v.end(), a.mutable_data());
+    return a;
+  }, py::arg("model"), py::arg("table"), py::arg("config"),
+        "A suite model (e.g. 'tau_plus_eq22', 'ndf_eq17', 'spongecake_ss_brdf', 'deon_corrected')\n"
+        "on the cells of a table, as `mcref validate` evaluates it: bin averages over binned\n"
+        "axes, point values on point axes. config: the experiment (dict or TOML text), e.g.\n"
+        "tables.provenance['config']. Returns an array of the table's shape.");
+}
+
+}  // namespace mcref::python

@@ -1,0 +1,195 @@
+// Tables in Python: mcref.Table / Axis / TableFile, read_tables, write_tables.
+// Arrays are copies (numpy, float64, row-major in the table's axis order);
+// files go through the C++ writer (temporary file renamed into place).
+#include <stdexcept>
+
+#include "sim/experiment/config_error.h"
+#include "sim/files/output_path.h"
+#include "sim/hdf5/table_file.h"
+#include "validate/python/bindings.h"
+
+namespace mcref::python {
+
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+py::array_t<double> shaped(const Table& t, const std::vector<double>& v) {
+  std::vector<py::ssize_t> shape;
+  for (std::size_t s : t.shape()) shape.push_back(static_cast<py::ssize_t>(s));
+  py::array_t<double> a(shape);
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
+}
+
+std::vector<double> flat(const Table& t, const Array& a, const char* what) {
+  const std::vector<std::size_t> shape = t.shape();
+  bool ok = static_cast<std::size_t>(a.ndim()) == shape.size();
+  for (std::size_t k = 0; ok && k < shape.size(); ++k) ok = static_cast<std::size_t>(a.shape(k)) == shape[k];
+  if (!ok) throw ConfigError("table " + t.name, what, "shape does not match the table's axes");
+  return std::vector<double>(a.data(), a.data() + a.size());
+}
+
+py::dict provenance_dict(const Provenance& p) {
+  py::dict d;
+  d["mcref_version"] = p.mcref_version;
+  d["git_commit"] = p.git_commit;
+  d["created"] = p.created;
+  d["command_line"] = p.command_line;
+  d["config"] = p.config;
+  d["source_file"] = p.source_file;
+  d["seed"] = p.seed;
+  return d;
+}
+
+const Table& find_table(const TableFile& f, const std::string& name) {
+  const Table* t = f.find(name);
+  if (!t) {
+    std::string names;
+    for (const Table& x : f.tables) names += (names.empty() ? "" : ", ") + x.name;
+    throw py::key_error("no table '" + name + "' (tables: " + names + ")");
+  }
+  return *t;
+}
+
+}  // namespace
+
+void bind_tables(py::module_& m) {
+  py::class_<Axis>(m, "Axis", "One axis of a table: bins (edges) or points.")
+      .def_static("bins", &Axis::bins, py::arg("name"), py::arg("unit"), py::arg("edges"))
+      .def_static("points", &Axis::points, py::arg("name"), py::arg("unit"), py::arg("values"))
+      .def_readonly("name", &Axis::name)
+      .def_readonly("unit", &Axis::unit)
+      .def_property_readonly("kind", [](const Axis& a) { return a.kind == Axis::Kind::Bins ? "bins" : "points"; })
+      .def_property_readonly("centres", [](const Axis& a) {
+        std::vector<double> c(a.size());
+        for (std::size_t i = 0; i < c.size(); ++i) c[i] = a.centre(i);
+        return py::array_t<double>(c.size(), c.data());
+      }, "bin centres, or the points")
+      .def_property_readonly("edges", [](const Axis& a) -> py::object {
+        if (a.kind != Axis::Kind::Bins) return py::none();
+        return py::array_t<double>(a.values.size(), a.values.data());
+      }, "bin edges (None for a point axis)")
+      .def("__len__", &Axis::size)
+      .def("__repr__", [](const Axis& a) {
+        return "<mcref.Axis " + a.name + " [" + a.unit + "] " + std::to_string(a.size()) +
+               (a.kind == Axis::Kind::Bins ? " bins>" : " points>");
+      });
+
+  py::class_<Table>(m, "Table",
+                    "A table of per-batch estimates: sum and sum_sq over batches per cell.\n"
+                    "value = sum / batches; stderr = sample standard deviation / sqrt(batches).")
+      .def(py::init([](std::string name, std::string quantity, std::vector<Axis> axes, Array sum, Array sum_sq,
+                       std::int64_t batches, std::string units, std::string description,
+                       std::map<std::string, std::string> attributes) {
+             Table t(std::move(name), std::move(quantity), std::move(axes));
+             t.sum = flat(t, sum, "sum");
+             t.sum_sq = flat(t, sum_sq, "sum_sq");
+             if (batches < 1) throw ConfigError("table " + t.name, "batches", "must be at least 1");
+             t.batches = batches;
+             t.units = std::move(units);
+             t.description = std::move(description);
+             t.attributes = std::move(attributes);
+             return t;
+           }),
+           py::arg("name"), py::arg("quantity"), py::arg("axes"), py::arg("sum"), py::arg("sum_sq"),
+           py::arg("batches"), py::arg("units") = "", py::arg("description") = "",
+           py::arg("attributes") = std::map<std::string, std::string>{})
+      .def_readonly("name", &Table::name)
+      .def_readonly("quantity", &Table::quantity)
+      .def_readonly("units", &Table::units)
+      .def_readonly("description", &Table::description)
+      .def_readonly("batches", &Table::batches)
+      .def_readonly("attributes", &Table::attributes)
+      .def_readonly("axes", &Table::axes)
+      .def_property_readonly("axis_names", [](const Table& t) {
+        std::vector<std::string> n;
+        for (const Axis& a : t.axes) n.push_back(a.name);
+        return n;
+      })
+      .def("axis", [](const Table& t, const std::string& name) {
+        for (const Axis& a : t.axes)
+          if (a.name == name) return a;
+        throw py::key_error("table " + t.name + " has no axis '" + name + "'");
+      })
+      .def_property_readonly("shape", &Table::shape)
+      .def_property_readonly("value", [](const Table& t) { return shaped(t, t.values()); })
+      .def_property_readonly("stderr", [](const Table& t) { return shaped(t, t.stderrs()); })
+      .def_property_readonly("sum", [](const Table& t) { return shaped(t, t.sum); })
+      .def_property_readonly("sum_sq", [](const Table& t) { return shaped(t, t.sum_sq); })
+      .def("to_xarray", [](const Table& t) {
+        py::module_ xr = py::module_::import("xarray");  // optional: ImportError without it
+        py::list dims;
+        py::dict coords, data, attrs;
+        for (const Axis& a : t.axes) {
+          dims.append(a.name);
+          std::vector<double> c(a.size());
+          for (std::size_t i = 0; i < c.size(); ++i) c[i] = a.centre(i);
+          coords[py::str(a.name)] = py::make_tuple(a.name, py::array_t<double>(c.size(), c.data()),
+                                                  py::dict(py::arg("unit") = a.unit));
+          if (a.kind == Axis::Kind::Bins)
+            coords[py::str(a.name + "_edges")] = py::array_t<double>(a.values.size(), a.values.data());
+        }
+        py::tuple d = py::tuple(dims);
+        data["value"] = py::make_tuple(d, shaped(t, t.values()));
+        data["stderr"] = py::make_tuple(d, shaped(t, t.stderrs()));
+        data["sum"] = py::make_tuple(d, shaped(t, t.sum));
+        data["sum_sq"] = py::make_tuple(d, shaped(t, t.sum_sq));
+        attrs["name"] = t.name;
+        attrs["quantity"] = t.quantity;
+        attrs["units"] = t.units;
+        attrs["description"] = t.description;
+        attrs["batches"] = t.batches;
+        for (const auto& [k, v] : t.attributes) attrs[py::str(k)] = v;
+        return xr.attr("Dataset")(data, py::arg("coords") = coords, py::arg("attrs") = attrs);
+      }, "The table as an xarray.Dataset (value, stderr, sum, sum_sq over the axes; needs xarray).")
+      .def("__repr__", [](const Table& t) {
+        std::string s = "<mcref.Table " + t.name + " (" + t.quantity + ", " + t.units + "), axes";
+        for (const Axis& a : t.axes) s += " " + a.name + "[" + std::to_string(a.size()) + "]";
+        return s + ", " + std::to_string(t.batches) + " batches>";
+      });
+
+  py::class_<TableFile>(m, "TableFile", "The tables of one file (or one simulation) with their provenance.")
+      .def_readonly("tables", &TableFile::tables)
+      .def_property_readonly("provenance", [](const TableFile& f) { return provenance_dict(f.provenance); })
+      .def_property_readonly("names", [](const TableFile& f) {
+        std::vector<std::string> n;
+        for (const Table& t : f.tables) n.push_back(t.name);
+        return n;
+      })
+      .def("__getitem__", &find_table, py::return_value_policy::copy)
+      .def("__contains__", [](const TableFile& f, const std::string& name) { return f.find(name) != nullptr; })
+      .def("__len__", [](const TableFile& f) { return f.tables.size(); })
+      .def("__repr__", [](const TableFile& f) {
+        std::string s = "<mcref.TableFile:";
+        for (const Table& t : f.tables) s += " " + t.name;
+        return s + ">";
+      });
+
+  m.def("read_tables", [](const std::string& path) {
+    py::gil_scoped_release release;
+    return read_table_file(path);
+  }, py::arg("path"), "Reads an mcref table file (HDF5). Raises ConfigError for a file mcref did not write.");
+
+  m.def("write_tables", [](const std::string& path, const TableFile& file) {
+    check_output_file(path, {}, "path");
+    py::gil_scoped_release release;
+    write_table_file(path, file);
+  }, py::arg("path"), py::arg("tables"),
+        "Writes a TableFile (from simulate or read_tables) to an HDF5 file that `mcref info` and\n"
+        "`mcref validate` read; written to a temporary name and renamed, never half-written.");
+
+  m.def("write_tables", [](const std::string& path, const std::vector<Table>& tables, const std::string& config,
+                           std::uint64_t seed, const std::string& command_line) {
+    check_output_file(path, {}, "path");
+    TableFile f;
+    f.tables = tables;
+    f.provenance = make_provenance(config, "<python>", seed, command_line);
+    py::gil_scoped_release release;
+    write_table_file(path, f);
+  }, py::arg("path"), py::arg("tables"), py::arg("config") = "", py::arg("seed") = 0,
+        py::arg("command_line") = "python: mcref.write_tables",
+        "Writes a list of Tables with new provenance (config text, seed, this mcref build, now).");
+}
+
+}  // namespace mcref::python
