@@ -6,6 +6,7 @@ PACKAGES=(
   libembree-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev
   libhdf5-dev libtomlplusplus-dev libgtest-dev libbenchmark-dev
   python3-matplotlib python3-h5py python3-numpy
+  libopenmpi-dev openmpi-bin
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "sim/dataset/dataset_entry.h"
+#include "sim/dataset/entry_scheduler.h"
 #include "sim/experiment/config_error.h"
 #include "sim/experiment/simulate.h"
 #include "sim/hdf5/table_file.h"
@@ -112,36 +113,50 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
     return s;
   }
   const std::string dir = o.output + ".parts";
-  std::vector<const EntryPlan*> pending;
-  for (const EntryPlan& p : mine) {
-    if (usable_part(part_path(dir, p.index), part_header, p.index, dir)) ++s.reused;
-    else pending.push_back(&p);
+  const Communicator& ranks = *o.ranks;
+  // Rank 0 alone scans the parts (it removes damaged ones); the other ranks
+  // learn whether that failed.
+  std::vector<std::int64_t> pending;
+  std::string error;
+  if (ranks.root()) {
+    try {
+      for (const EntryPlan& p : mine) {
+        if (usable_part(part_path(dir, p.index), part_header, p.index, dir)) ++s.reused;
+        else pending.push_back(p.index);
+      }
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
   }
-  Progress progress("dataset", static_cast<double>(pending.size()), o.quiet);
+  agree_on_error(ranks, error);
+  Progress progress("dataset", static_cast<double>(pending.size()), o.quiet || !ranks.root());
   SimulateOptions sim;
   sim.threads = o.threads;
   sim.quiet = true;
-  for (const EntryPlan* p : pending) {
-    if (o.stop_after >= 0 && s.computed >= o.stop_after) break;
-    const Experiment ex = entry_experiment(c, *p);
+  auto compute = [&](std::int64_t index) {
+    const EntryPlan& p = mine[static_cast<std::size_t>((index - o.shard) / o.shards)];
+    const Experiment ex = entry_experiment(c, p);
     SimulateSummary summary;
     DatasetEntry e;
-    e.index = p->index;
-    e.seed = p->seed;
-    e.parameters = p->columns;
-    e.assignments = join_lines(p->assignments);
+    e.index = p.index;
+    e.seed = p.seed;
+    e.parameters = p.columns;
+    e.assignments = join_lines(p.assignments);
     e.config = ex.text;
     e.tables = select_tables(c, mcref::simulate(ex, sim, &summary));
     fs::create_directories(dir);
-    DatasetWriter w(part_path(dir, p->index), part_header);
+    DatasetWriter w(part_path(dir, p.index), part_header);
     w.add(e);
     w.commit();
-    ++s.computed;
-    s.rays += summary.rays;
-    progress.advance(1);
-  }
+    return summary.rays;
+  };
+  const ScheduleSummary done =
+      schedule_entries(ranks, pending, o.stop_after, compute, [&](std::int64_t, double) { progress.advance(1); });
+  s.computed = done.computed;
+  s.rays = done.rays;
   progress.finish();
   s.seconds = progress.elapsed_seconds();
+  if (!ranks.root()) return s;
   if (s.computed + s.reused < s.entries) return s;
   {
     DatasetWriter w(o.output, final_header);

@@ -26,7 +26,10 @@ const char* kHelp =
     "                   the N shards with `mcref merge`)\n"
     "  --threads N      worker threads per entry\n"
     "  --stop-after N   compute at most N new entries, then stop (rerun to continue)\n"
-    "  --quiet          no progress line\n";
+    "  --quiet          no progress line\n"
+    "Under mpirun -np N, the ranks share the entries dynamically (a rank that\n"
+    "finishes one takes the next); each writes its parts, rank 0 assembles DATA.h5:\n"
+    "the same bytes as one process. Resume works with any N.\n";
 
 }  // namespace
 
@@ -59,9 +62,11 @@ int dataset(const std::vector<std::string>& raw, const std::string& command_line
   opt.output = a.output;
   opt.threads = a.threads;
   opt.quiet = a.quiet;
+  opt.ranks = &Communicator::world();  // under mpirun: the entries spread over the ranks
   const DatasetConfig config = load_dataset(a.positional[0]);
   check_output_file(a.output, {a.positional[0], config.experiment_file});
   const DatasetRunSummary s = run_dataset(config, opt);
+  if (!opt.ranks->root()) return 0;  // rank 0 reports for the job
   if (s.up_to_date) {
     if (!a.quiet) std::fprintf(stderr, "mcref dataset: %s is up to date (%lld entries)\n", a.output.c_str(),
                                static_cast<long long>(s.entries));

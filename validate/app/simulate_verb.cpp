@@ -20,7 +20,9 @@ const char* kHelp =
     "  --seed N         overrides run.seed\n"
     "  --threads N      worker threads (tables are identical for any N)\n"
     "  --set key=value  overrides a key, e.g. --set geometry.tau0=0.3 --set measure.0.samples=1e5\n"
-    "  --quiet          no progress line\n";
+    "  --quiet          no progress line\n"
+    "Under mpirun -np N, the batches are spread over the N ranks and rank 0 writes\n"
+    "TABLES.h5: the same tables as one process.\n";
 }  // namespace
 
 int simulate(const std::vector<std::string>& raw, const std::string& command_line) {
@@ -39,9 +41,11 @@ int simulate(const std::vector<std::string>& raw, const std::string& command_lin
   SimulateOptions opt;
   opt.threads = a.threads;
   opt.quiet = a.quiet;
+  opt.ranks = &Communicator::world();  // under mpirun: the batches spread over the ranks
   SimulateSummary summary;
   TableFile out;
   out.tables = mcref::simulate(ex, opt, &summary);
+  if (!opt.ranks->root()) return 0;  // rank 0 holds the tables and writes them
   out.provenance = make_provenance(ex.text, ex.file, ex.run.seed, command_line);
   write_table_file(a.output, out);
   if (!a.quiet)
