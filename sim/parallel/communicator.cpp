@@ -9,6 +9,8 @@
 #include "sim/experiment/config_error.h"
 
 #ifdef MCREF_WITH_MPI
+#define OMPI_SKIP_MPICXX 1  // the C API only
+#define MPICH_SKIP_MPICXX 1
 #include <mpi.h>
 #endif
 
