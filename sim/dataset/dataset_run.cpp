@@ -88,7 +88,8 @@ DatasetHeader dataset_header(const DatasetConfig& c, const std::string& shard) {
 DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o) {
   DatasetRunSummary s;
   const std::string shard = o.shards == 1 ? "all" : std::to_string(o.shard) + "/" + std::to_string(o.shards);
-  const DatasetHeader final_header = dataset_header(c, shard);
+  DatasetHeader final_header = dataset_header(c, shard);
+  final_header.lean = o.lean;
   const DatasetHeader part_header = dataset_header(c, "part");
   // Plan and validate every entry before writing anything.
   std::vector<EntryPlan> mine;
@@ -98,7 +99,12 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
     if (i % o.shards == o.shard) mine.push_back(std::move(plan));
   }
   s.entries = static_cast<std::int64_t>(mine.size());
-  if (fs::exists(o.output)) {
+  const Communicator& ranks = *o.ranks;
+  // An existing OUTPUT holding this shard: nothing to do; anything else is an
+  // error. Rank 0 alone looks (only it writes OUTPUT) and tells the others.
+  std::string up_to_date;
+  check_on_root(ranks, [&] {
+    if (!fs::exists(o.output)) return;
     std::string why;
     try {
       DatasetReader r(o.output);
@@ -109,11 +115,14 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
       why = "it is not a readable mcref dataset";
     }
     if (!why.empty()) throw ConfigError(o.output, "", "exists and " + why + "; remove it or choose another -o");
+    up_to_date = "yes";
+  });
+  ranks.broadcast(up_to_date);
+  if (!up_to_date.empty()) {
     s.complete = s.up_to_date = true;
     return s;
   }
   const std::string dir = o.output + ".parts";
-  const Communicator& ranks = *o.ranks;
   // Rank 0 alone scans the parts (it removes damaged ones); the other ranks
   // learn whether that failed.
   std::vector<std::int64_t> pending;
@@ -175,10 +184,14 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
   return s;
 }
 
-std::int64_t merge_datasets(const std::vector<std::string>& inputs, const std::string& output, bool quiet) {
+std::int64_t merge_datasets(const std::vector<std::string>& inputs, const std::string& output, bool quiet, bool lean) {
   if (inputs.empty()) throw ConfigError("command line", "", "mcref merge needs at least one shard file");
   std::vector<std::unique_ptr<DatasetReader>> shards;
-  for (const std::string& in : inputs) shards.push_back(std::make_unique<DatasetReader>(in));
+  for (const std::string& in : inputs) {
+    shards.push_back(std::make_unique<DatasetReader>(in));
+    if (shards.back()->header().lean)
+      throw ConfigError(in, "storage", "is a lean dataset (float32 value and stderr, no sums) and cannot be merged; merge the full shards (merge --lean writes a lean result)");
+  }
   const DatasetHeader& first = shards[0]->header();
   for (std::size_t k = 1; k < shards.size(); ++k) {
     const std::string why = first.difference(shards[k]->header());
@@ -208,6 +221,7 @@ std::int64_t merge_datasets(const std::vector<std::string>& inputs, const std::s
   }
   DatasetHeader h = first;
   h.shard = "all";
+  h.lean = lean;
   Progress progress("merge", static_cast<double>(n), quiet);
   DatasetWriter w(output, h);
   for (std::int64_t i = 0; i < n; ++i) {

@@ -20,6 +20,7 @@ struct DatasetRunOptions {
   int threads = 0;               // 0: the experiment's run.threads (0 there: all cores)
   bool quiet = false;
   std::int64_t stop_after = -1;  // compute at most this many new entries, then stop without assembling
+  bool lean = false;             // OUTPUT in lean storage (the parts stay full, so resume works)
   // Ranks the entries are spread over (sim/dataset/entry_scheduler.h): each
   // writes the parts it computes; rank 0 scans the parts and assembles OUTPUT.
   const Communicator* ranks = &Communicator::self();
@@ -41,8 +42,9 @@ DatasetHeader dataset_header(const DatasetConfig& config, const std::string& sha
 // written). The summary is the job's on rank 0.
 DatasetRunSummary run_dataset(const DatasetConfig& config, const DatasetRunOptions& options);
 
-// Combines shard files (same dataset, no overlaps, every entry present) into
-// `output`; returns the number of entries.
-std::int64_t merge_datasets(const std::vector<std::string>& inputs, const std::string& output, bool quiet);
+// Combines shard files (same dataset, no overlaps, every entry present, none
+// lean) into `output` (lean storage if `lean`); returns the number of entries.
+std::int64_t merge_datasets(const std::vector<std::string>& inputs, const std::string& output, bool quiet,
+                            bool lean = false);
 
 }  // namespace mcref

@@ -133,4 +133,17 @@ void agree_on_error(const Communicator& comm, std::string error) {
   if (!error.empty()) throw ConfigError(error);
 }
 
+void check_on_root(const Communicator& comm, const std::function<void()>& check) {
+  std::string error;
+  if (comm.root()) {
+    try {
+      check();
+    } catch (const ConfigError& e) {
+      if (comm.size() == 1) throw;
+      error = e.what();
+    }
+  }
+  agree_on_error(comm, error);
+}
+
 }  // namespace mcref

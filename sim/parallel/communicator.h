@@ -8,6 +8,7 @@
 // depend on each other, so a bad input fails on all of them alike (rank 0
 // prints the line). An error inside a DistributedStep (a rank alone, while
 // the others wait for it) ends the whole job (MPI_Abort).
+#include <functional>
 #include <string>
 
 namespace mcref {
@@ -73,5 +74,9 @@ class DistributedStep {
 // Throws ConfigError(`error`) on every rank if rank 0's `error` is not empty
 // (rank 0 found it alone, e.g. while scanning files it alone may touch).
 void agree_on_error(const Communicator& comm, std::string error);
+
+// Runs `check` on rank 0 alone (e.g. the output path checks: only rank 0
+// writes there) and throws its ConfigError on every rank.
+void check_on_root(const Communicator& comm, const std::function<void()>& check);
 
 }  // namespace mcref

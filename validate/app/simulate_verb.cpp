@@ -37,11 +37,11 @@ int simulate(const std::vector<std::string>& raw, const std::string& command_lin
   if (a.seed >= 0) sets.push_back("run.seed=" + std::to_string(a.seed));
   const Experiment ex = load_experiment(a.positional[0], sets);
   // Fail before simulating if the output cannot be written.
-  check_output_file(a.output, {a.positional[0]});
   SimulateOptions opt;
+  opt.ranks = &Communicator::world();  // under mpirun: the batches spread over the ranks
+  check_on_root(*opt.ranks, [&] { check_output_file(a.output, {a.positional[0]}); });
   opt.threads = a.threads;
   opt.quiet = a.quiet;
-  opt.ranks = &Communicator::world();  // under mpirun: the batches spread over the ranks
   SimulateSummary summary;
   TableFile out;
   out.tables = mcref::simulate(ex, opt, &summary);

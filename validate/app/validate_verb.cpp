@@ -31,15 +31,15 @@ int validate(const std::vector<std::string>& raw, const std::string& command_lin
   if (a.positional.size() != 1) throw ConfigError("command line", "", "mcref validate needs exactly one SUITE.toml (see --help)");
   if (a.output.empty()) throw ConfigError("command line", "-o", "an output directory is required (-o OUTDIR)");
   const Suite suite = load_suite(a.positional[0]);
-  check_output_directory(a.output, {a.positional[0]});
   SuiteOptions o;
+  o.ranks = &Communicator::world();  // under mpirun: each case's batches spread over the ranks
+  check_on_root(*o.ranks, [&] { check_output_directory(a.output, {a.positional[0]}); });
   o.out_dir = a.output;
   o.threads = a.threads;
   o.quiet = a.quiet;
   o.force = a.force;
   o.command_line = command_line;
   o.scripts_dir = MCREF_SCRIPTS_DIR;
-  o.ranks = &Communicator::world();  // under mpirun: each case's batches spread over the ranks
   return run_suite(suite, o) > 0 ? 1 : 0;
 }
 
