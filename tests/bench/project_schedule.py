@@ -10,7 +10,7 @@ assembly of DATA.h5 (measured seconds per entry, full and lean), and
 reports the rate at which the ranks write parts while they compute.
 
   tests/bench/project_schedule.py costs.csv --paths-scale 0.1 --entry-bytes 1.7e8 \\
-      --assembly-s 0.5 --lean-assembly-s 0.4 --cores 64 1024
+      --fixed-seconds 7.4 --assembly-s 0.85 --lean-assembly-s 0.65 --cores 64 1024
 """
 import argparse
 import csv
@@ -32,6 +32,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("costs")
     ap.add_argument("--paths-scale", type=float, default=1.0, help="the paths scale the costs were measured at")
+    ap.add_argument("--fixed-seconds", type=float, default=0.0,
+                    help="an entry's cost without paths (samples = 1): kept as is, the rest scaled by 1/paths-scale")
     ap.add_argument("--entry-bytes", type=float, required=True, help="bytes of one entry in DATA.h5 (full storage)")
     ap.add_argument("--assembly-s", type=float, required=True, help="rank 0's assembly seconds per entry (full)")
     ap.add_argument("--lean-assembly-s", type=float, default=0, help="the same writing lean storage")
@@ -41,7 +43,8 @@ def main():
     args = ap.parse_args()
     measured = {name: [] for name in DATASETS}
     for row in csv.DictReader(open(args.costs)):
-        measured[row["dataset"]].append(float(row["seconds"]) / args.paths_scale)
+        s = float(row["seconds"])
+        measured[row["dataset"]].append(args.fixed_seconds + max(0.0, s - args.fixed_seconds) / args.paths_scale)
     rng = random.Random(args.seed)
     total = sum(statistics.mean(v) * DATASETS[n] for n, v in measured.items() if v)
     print("entries measured: " + ", ".join(f"{n} {len(v)}" for n, v in measured.items()))
