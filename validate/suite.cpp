@@ -115,23 +115,27 @@ bool cache_is_current(const TableFile& cached, const Experiment& ex, const Case&
 TableFile tables_for(const Case& c, const Experiment& ex, const SuiteOptions& o, const std::string& path,
                      std::size_t k, std::size_t n, bool& reused) {
   reused = false;
-  if (!o.force && fs::exists(path)) {
+  TableFile cached;
+  if (o.ranks->root() && !o.force && fs::exists(path)) {
     try {
-      TableFile cached = read_table_file(path);
-      if (cache_is_current(cached, ex, c)) {
-        reused = true;
-        return cached;
-      }
+      cached = read_table_file(path);
+      reused = cache_is_current(cached, ex, c);
     } catch (const std::exception&) {
       // unreadable or foreign: simulate again and replace it
     }
   }
+  std::string verdict = reused ? "reuse" : "";  // rank 0's, for every rank
+  o.ranks->broadcast(verdict);
+  reused = !verdict.empty();
+  if (reused) return cached;
   SimulateOptions so;
   so.threads = o.threads;
   so.quiet = o.quiet;
+  so.ranks = o.ranks;
   so.label = "[" + std::to_string(k + 1) + "/" + std::to_string(n) + "] " + c.name;
   TableFile f;
   f.tables = simulate(ex, so);
+  if (!o.ranks->root()) return f;  // the tables are complete on rank 0 only
   // In name order, as a cached file lists them: the report and results.json
   // come out the same whether the tables were simulated or reused.
   std::sort(f.tables.begin(), f.tables.end(), [](const Table& a, const Table& b) { return a.name < b.name; });
@@ -273,9 +277,12 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
         throw ConfigError(suite.file, "case." + std::to_string(k) + ".check",
                           "table \"" + chk.table + "\" is not produced by " + suite.cases[k].experiment_path);
     }
-  fs::create_directories(fs::path(o.out_dir) / "tables");
+  if (o.ranks->root()) fs::create_directories(fs::path(o.out_dir) / "tables");
   std::vector<CaseResult> results;
   int failures = 0;
+  // Under MPI the other ranks go on to the next case's batches while rank 0
+  // checks this one: an error here must end the job, not leave them waiting.
+  const DistributedStep step;
   for (std::size_t k = 0; k < suite.cases.size(); ++k) {
     const Case& c = suite.cases[k];
     const Experiment& ex = experiments[k];
@@ -285,6 +292,7 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
     cr.description = c.description;
     cr.table_file = (fs::path("tables") / (c.name + ".h5")).string();
     const TableFile f = tables_for(c, ex, o, (fs::path(o.out_dir) / cr.table_file).string(), k, suite.cases.size(), cr.reused);
+    if (!o.ranks->root()) continue;  // the other ranks only help simulate
     cr.provenance = f.provenance;
     cr.energy = energy_shares(f);
     std::vector<Check> checks = c.checks;
@@ -316,7 +324,7 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
                    bad ? "FAIL" : "ok", results.back().reused ? " (cached tables)" : "");
     }
   }
-  write_report(suite, results, o);
+  if (o.ranks->root()) write_report(suite, results, o);
   return failures;
 }
 

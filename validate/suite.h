@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "sim/experiment/experiment.h"
+#include "sim/parallel/communicator.h"
 
 namespace mcref {
 
@@ -43,6 +44,9 @@ struct SuiteOptions {
   bool force = false;  // re-simulate even when cached tables are current
   std::string command_line;
   std::string scripts_dir;  // where plot_validation.py lives
+  // Ranks each case's batches are spread over (sim/parallel/batch_loop.h);
+  // rank 0 alone checks the models and writes tables, plots and report.
+  const Communicator* ranks = &Communicator::self();
 };
 
 int run_suite(const Suite& suite, const SuiteOptions& options);

@@ -26,6 +26,11 @@ const char* kLayout =
     "/parameters/labels/<column>), /parameters/names [columns], /parameters/index [rows] entry index, "
     "/parameters/seed [rows], /parameters/assignments [rows]; /entries/<index>/<table>/{value, stderr, sum, "
     "sum_sq, axes} as in mcref table files";
+const char* kLeanLayout =
+    "/parameters/values [rows, columns] float64 (NaN: does not apply; categorical columns: index into "
+    "/parameters/labels/<column>), /parameters/names [columns], /parameters/index [rows] entry index, "
+    "/parameters/seed [rows], /parameters/assignments [rows]; /entries/<index>/<table>/{value, stderr} "
+    "float32 and axes as in mcref table files (lean storage: no sum, sum_sq)";
 
 }  // namespace
 
@@ -38,6 +43,7 @@ std::string DatasetHeader::difference(const DatasetHeader& o) const {
   if (entries != o.entries) return "the entry counts differ";
   if (columns != o.columns || labels != o.labels) return "the parameter columns differ";
   if (compression != o.compression) return "the compression levels differ";
+  if (lean != o.lean) return std::string("one is lean storage, the other full (") + (lean ? "lean" : "full") + " vs " + (o.lean ? "lean" : "full") + ")";
   if (mcref_version != o.mcref_version || git_commit != o.git_commit)
     return "they were written by different mcref builds (" + mcref_version + " " + git_commit + " vs " +
            o.mcref_version + " " + o.git_commit + ")";
@@ -64,7 +70,8 @@ DatasetWriter::DatasetWriter(const std::string& path, const DatasetHeader& heade
     h5::write_string_attr(root, "experiment_config", header.experiment_config);
     h5::write_string_attr(root, "experiment_file", header.experiment_file);
     h5::write_string_attr(root, "conventions", table_conventions());
-    h5::write_string_attr(root, "layout", kLayout);
+    h5::write_string_attr(root, "layout", header.lean ? kLeanLayout : kLayout);
+    if (header.lean) h5::write_string_attr(root, "storage", "lean");
     h5::Handle entries = h5::create_group(file_, "entries");
     entries_ = H5Gopen2(file_, "entries", H5P_DEFAULT);
   } catch (...) {
@@ -90,7 +97,7 @@ void DatasetWriter::add(const DatasetEntry& e) {
   std::vector<const Table*> tables;
   for (const Table& t : e.tables) tables.push_back(&t);
   std::sort(tables.begin(), tables.end(), [](const Table* a, const Table* b) { return a->name < b->name; });
-  for (const Table* t : tables) write_table_group(g, *t, header_.compression);
+  for (const Table* t : tables) write_table_group(g, *t, header_.compression, header_.lean);
   DatasetEntry row = e;
   row.tables.clear();
   row.config.clear();
@@ -152,6 +159,11 @@ DatasetReader::DatasetReader(const std::string& path) : path_(path) {
     h.dataset_config = h5::read_string_attr(root, "dataset_config");
     h.experiment_config = h5::read_string_attr(root, "experiment_config");
     h.experiment_file = h5::read_string_attr(root, "experiment_file");
+    if (h5::has_attr(root, "storage")) {
+      const std::string storage = h5::read_string_attr(root, "storage");
+      if (storage != "lean") throw ConfigError(path, "storage", "is \"" + storage + "\"; this mcref knows \"lean\" (or none: full)");
+      h.lean = true;
+    }
     h5::Handle p = h5::open_group(file_, "parameters");
     h.columns = h5::read_strings(p, "names");
     h5::Handle labels = h5::open_group(p, "labels");
@@ -179,6 +191,8 @@ DatasetReader::~DatasetReader() {
 }
 
 DatasetEntry DatasetReader::entry(std::int64_t index) const {
+  if (header_.lean)
+    throw ConfigError(path_, "storage", "is a lean dataset (float32 value and stderr, no sums): its entries cannot be merged or resumed; use the full files");
   const auto it = std::lower_bound(indices_.begin(), indices_.end(), index);
   if (it == indices_.end() || *it != index)
     throw ConfigError(path_, "", "holds no entry " + std::to_string(index));

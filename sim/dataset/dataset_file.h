@@ -6,7 +6,8 @@
 //                           git_commit, seed, entries (in the whole dataset),
 //                           shard ("all", "K/N" or "part"), compression,
 //                           dataset_config, experiment_config, experiment_file,
-//                           conventions, layout
+//                           conventions, layout; storage = "lean" in lean files
+//                           (absent: full)
 //   /parameters/values      float64 [rows, columns]: one row per entry in this file,
 //                           NaN where a parameter does not apply (e.g. layer 1
 //                           of a 1-layer entry); categorical columns hold an index
@@ -19,7 +20,10 @@
 //   /entries/<index>/       attributes index, seed, assignments, config (the entry's
 //                           effective experiment); one group per table in the
 //                           layout of sim/hdf5/table_file.h (value, stderr, sum,
-//                           sum_sq, axes as dimension scales, <axis>_edges)
+//                           sum_sq, axes as dimension scales, <axis>_edges); in
+//                           lean files value and stderr only, as float32
+//                           (sim/hdf5/table_group.h): such files cannot be merged
+//                           or resumed, entry() refuses them
 // No wall-clock dates nor command lines are stored and object time tracking
 // is off, so a file's bytes are a function of its content; the writer takes
 // entries in increasing index order (canonical). Files are written to a
@@ -46,6 +50,7 @@ struct DatasetHeader {
   std::string dataset_config, experiment_config, experiment_file;
   std::vector<std::string> columns;
   std::map<std::string, std::vector<std::string>> labels;  // categorical columns
+  bool lean = false;  // float32 value and stderr, no sums (final files only)
 
   // Same dataset (config, base, seed, build): shards and parts may be combined.
   bool same_dataset(const DatasetHeader& o) const;
@@ -90,6 +95,7 @@ class DatasetReader {
   DatasetReader& operator=(const DatasetReader&) = delete;
   const DatasetHeader& header() const { return header_; }
   const std::vector<std::int64_t>& indices() const { return indices_; }
+  // Throws ConfigError for a lean file (its tables have no sums).
   DatasetEntry entry(std::int64_t index) const;
   const std::string& path() const { return path_; }
 

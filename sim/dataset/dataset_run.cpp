@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "sim/dataset/dataset_entry.h"
+#include "sim/dataset/entry_scheduler.h"
 #include "sim/experiment/config_error.h"
 #include "sim/experiment/simulate.h"
 #include "sim/hdf5/table_file.h"
@@ -87,7 +88,8 @@ DatasetHeader dataset_header(const DatasetConfig& c, const std::string& shard) {
 DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o) {
   DatasetRunSummary s;
   const std::string shard = o.shards == 1 ? "all" : std::to_string(o.shard) + "/" + std::to_string(o.shards);
-  const DatasetHeader final_header = dataset_header(c, shard);
+  DatasetHeader final_header = dataset_header(c, shard);
+  final_header.lean = o.lean;
   const DatasetHeader part_header = dataset_header(c, "part");
   // Plan and validate every entry before writing anything.
   std::vector<EntryPlan> mine;
@@ -97,7 +99,12 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
     if (i % o.shards == o.shard) mine.push_back(std::move(plan));
   }
   s.entries = static_cast<std::int64_t>(mine.size());
-  if (fs::exists(o.output)) {
+  const Communicator& ranks = *o.ranks;
+  // An existing OUTPUT holding this shard: nothing to do; anything else is an
+  // error. Rank 0 alone looks (only it writes OUTPUT) and tells the others.
+  std::string up_to_date;
+  check_on_root(ranks, [&] {
+    if (!fs::exists(o.output)) return;
     std::string why;
     try {
       DatasetReader r(o.output);
@@ -108,40 +115,57 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
       why = "it is not a readable mcref dataset";
     }
     if (!why.empty()) throw ConfigError(o.output, "", "exists and " + why + "; remove it or choose another -o");
+    up_to_date = "yes";
+  });
+  ranks.broadcast(up_to_date);
+  if (!up_to_date.empty()) {
     s.complete = s.up_to_date = true;
     return s;
   }
   const std::string dir = o.output + ".parts";
-  std::vector<const EntryPlan*> pending;
-  for (const EntryPlan& p : mine) {
-    if (usable_part(part_path(dir, p.index), part_header, p.index, dir)) ++s.reused;
-    else pending.push_back(&p);
+  // Rank 0 alone scans the parts (it removes damaged ones); the other ranks
+  // learn whether that failed.
+  std::vector<std::int64_t> pending;
+  std::string error;
+  if (ranks.root()) {
+    try {
+      for (const EntryPlan& p : mine) {
+        if (usable_part(part_path(dir, p.index), part_header, p.index, dir)) ++s.reused;
+        else pending.push_back(p.index);
+      }
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
   }
-  Progress progress("dataset", static_cast<double>(pending.size()), o.quiet);
+  agree_on_error(ranks, error);
+  Progress progress("dataset", static_cast<double>(pending.size()), o.quiet || !ranks.root());
   SimulateOptions sim;
   sim.threads = o.threads;
   sim.quiet = true;
-  for (const EntryPlan* p : pending) {
-    if (o.stop_after >= 0 && s.computed >= o.stop_after) break;
-    const Experiment ex = entry_experiment(c, *p);
+  auto compute = [&](std::int64_t index) {
+    const EntryPlan& p = mine[static_cast<std::size_t>((index - o.shard) / o.shards)];
+    const Experiment ex = entry_experiment(c, p);
     SimulateSummary summary;
     DatasetEntry e;
-    e.index = p->index;
-    e.seed = p->seed;
-    e.parameters = p->columns;
-    e.assignments = join_lines(p->assignments);
+    e.index = p.index;
+    e.seed = p.seed;
+    e.parameters = p.columns;
+    e.assignments = join_lines(p.assignments);
     e.config = ex.text;
     e.tables = select_tables(c, mcref::simulate(ex, sim, &summary));
     fs::create_directories(dir);
-    DatasetWriter w(part_path(dir, p->index), part_header);
+    DatasetWriter w(part_path(dir, p.index), part_header);
     w.add(e);
     w.commit();
-    ++s.computed;
-    s.rays += summary.rays;
-    progress.advance(1);
-  }
+    return summary.rays;
+  };
+  const ScheduleSummary done =
+      schedule_entries(ranks, pending, o.stop_after, compute, [&](std::int64_t, double) { progress.advance(1); });
+  s.computed = done.computed;
+  s.rays = done.rays;
   progress.finish();
   s.seconds = progress.elapsed_seconds();
+  if (!ranks.root()) return s;
   if (s.computed + s.reused < s.entries) return s;
   {
     DatasetWriter w(o.output, final_header);
@@ -160,10 +184,14 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
   return s;
 }
 
-std::int64_t merge_datasets(const std::vector<std::string>& inputs, const std::string& output, bool quiet) {
+std::int64_t merge_datasets(const std::vector<std::string>& inputs, const std::string& output, bool quiet, bool lean) {
   if (inputs.empty()) throw ConfigError("command line", "", "mcref merge needs at least one shard file");
   std::vector<std::unique_ptr<DatasetReader>> shards;
-  for (const std::string& in : inputs) shards.push_back(std::make_unique<DatasetReader>(in));
+  for (const std::string& in : inputs) {
+    shards.push_back(std::make_unique<DatasetReader>(in));
+    if (shards.back()->header().lean)
+      throw ConfigError(in, "storage", "is a lean dataset (float32 value and stderr, no sums) and cannot be merged; merge the full shards (merge --lean writes a lean result)");
+  }
   const DatasetHeader& first = shards[0]->header();
   for (std::size_t k = 1; k < shards.size(); ++k) {
     const std::string why = first.difference(shards[k]->header());
@@ -193,6 +221,7 @@ std::int64_t merge_datasets(const std::vector<std::string>& inputs, const std::s
   }
   DatasetHeader h = first;
   h.shard = "all";
+  h.lean = lean;
   Progress progress("merge", static_cast<double>(n), quiet);
   DatasetWriter w(output, h);
   for (std::int64_t i = 0; i < n; ++i) {

@@ -26,11 +26,13 @@ std::vector<Table> simulate(const Experiment& ex, const SimulateOptions& options
   double work = 0;
   for (const Measure& m : ex.measures) work += work_units(m);
   work *= ex.run.batches;
-  Progress progress(options.label, work, options.quiet);
+  const Communicator& ranks = *options.ranks;
+  Progress progress(options.label, work, options.quiet || !ranks.root());
+  const BatchLoop loop(ranks, progress, work / ex.run.batches);
   std::size_t grains = 0;
-  std::vector<Table> out = ex.kind == "micrograin" ? simulate_micrograin(ex, progress, &grains)
-                           : ex.kind == "slab"     ? simulate_slab(ex, progress)
-                                                   : simulate_spheres(ex, progress);
+  std::vector<Table> out = ex.kind == "micrograin" ? simulate_micrograin(ex, loop, &grains)
+                           : ex.kind == "slab"     ? simulate_slab(ex, loop)
+                                                   : simulate_spheres(ex, loop);
   progress.finish();
   if (summary) {
     summary->seconds = progress.elapsed_seconds();

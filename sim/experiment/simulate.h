@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "sim/experiment/experiment.h"
+#include "sim/parallel/communicator.h"
 #include "sim/tally/table.h"
 
 namespace mcref {
@@ -12,6 +13,9 @@ struct SimulateOptions {
   int threads = 0;       // 0: use the experiment's run.threads (0 there: all cores)
   bool quiet = false;    // no progress line
   std::string label = "simulate";
+  // Ranks the batches are spread over (sim/parallel/batch_loop.h); the
+  // tables are complete on rank 0 only.
+  const Communicator* ranks = &Communicator::self();
 };
 
 struct SimulateSummary {

@@ -1,11 +1,12 @@
 #pragma once
 // One simulate function per geometry kind (simulate() dispatches on kind).
-// Each runs run.batches realizations and returns its tables; `progress`
-// is advanced by the caller-agreed work units (see work_units()).
+// Each runs run.batches realizations through `loop` (which may spread them
+// over ranks) and returns its tables; a batch advances loop.progress() by
+// the caller-agreed work units (see work_units()).
 #include <vector>
 
 #include "sim/experiment/experiment.h"
-#include "sim/parallel/progress.h"
+#include "sim/parallel/batch_loop.h"
 #include "sim/tally/table.h"
 
 namespace mcref {
@@ -15,8 +16,8 @@ double work_units(const Measure& m);
 // The tables of every measure, in measure order, as one list.
 std::vector<Table> flatten(std::vector<std::vector<Table>>&& per_measure);
 
-std::vector<Table> simulate_micrograin(const Experiment& ex, Progress& progress, std::size_t* grains);
-std::vector<Table> simulate_slab(const Experiment& ex, Progress& progress);
-std::vector<Table> simulate_spheres(const Experiment& ex, Progress& progress);
+std::vector<Table> simulate_micrograin(const Experiment& ex, const BatchLoop& loop, std::size_t* grains);
+std::vector<Table> simulate_slab(const Experiment& ex, const BatchLoop& loop);
+std::vector<Table> simulate_spheres(const Experiment& ex, const BatchLoop& loop);
 
 }  // namespace mcref

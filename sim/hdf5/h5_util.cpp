@@ -117,6 +117,18 @@ Handle write_doubles(hid_t parent, const std::string& name, const std::vector<hs
   return ds;
 }
 
+Handle write_floats(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims,
+                    const std::vector<double>& data, int compression) {
+  Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
+  Handle dcpl = dataset_create_plist(dims, compression);
+  Handle ds(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F32LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT), H5Dclose);
+  if (!ds.valid()) throw std::runtime_error("HDF5 error creating dataset " + name);
+  std::vector<float> f(data.begin(), data.end());
+  if (!f.empty())
+    check(H5Dwrite(ds, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, f.data()), "writing dataset " + name);
+  return ds;
+}
+
 void write_int64s(hid_t parent, const std::string& name, const std::vector<std::int64_t>& data) {
   const hsize_t n = data.size();
   Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);

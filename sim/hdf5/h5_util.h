@@ -54,6 +54,9 @@ std::int64_t read_int_attr(hid_t obj, const std::string& name);
 // gzip level (0: contiguous, uncompressed).
 Handle write_doubles(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims,
                      const std::vector<double>& data, int compression = 0);
+// The same, stored as float32 (rounded to nearest); read back with read_doubles.
+Handle write_floats(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims,
+                    const std::vector<double>& data, int compression = 0);
 void write_int64s(hid_t parent, const std::string& name, const std::vector<std::int64_t>& data);
 void write_strings(hid_t parent, const std::string& name, const std::vector<std::string>& data);
 std::vector<double> read_doubles(hid_t parent, const std::string& name);

@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <set>
@@ -57,7 +58,10 @@ Provenance make_provenance(const std::string& config_text, const std::string& so
   p.mcref_version = mcref_version();
   p.git_commit = mcref_git_commit();
   char buf[64];
-  const std::time_t now = std::time(nullptr);
+  // SOURCE_DATE_EPOCH (the reproducible-builds convention) fixes the date, so
+  // that two runs can be compared byte for byte.
+  const char* epoch = std::getenv("SOURCE_DATE_EPOCH");
+  const std::time_t now = epoch && *epoch ? static_cast<std::time_t>(std::strtoll(epoch, nullptr, 10)) : std::time(nullptr);
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
   p.created = buf;
   p.command_line = command_line;

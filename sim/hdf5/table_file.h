@@ -36,7 +36,7 @@ struct TableFile {
 const char* table_conventions();
 std::string mcref_version();
 std::string mcref_git_commit();
-// Provenance for a run now: version, commit, UTC date, command line.
+// Provenance for a run now: version, commit, UTC date (SOURCE_DATE_EPOCH if set), command line.
 Provenance make_provenance(const std::string& config_text, const std::string& source_file, std::uint64_t seed,
                            const std::string& command_line);
 

@@ -12,10 +12,10 @@
 namespace mcref {
 
 namespace {
-const std::set<std::string> kReservedAttrs{"quantity", "units", "description", "batches", "axes"};
+const std::set<std::string> kReservedAttrs{"quantity", "units", "description", "batches", "axes", "storage"};
 }
 
-void write_table_group(hid_t parent, const Table& t, int compression) {
+void write_table_group(hid_t parent, const Table& t, int compression, bool lean) {
   h5::Handle group = h5::create_group(parent, t.name);
   h5::write_string_attr(group, "quantity", t.quantity);
   h5::write_string_attr(group, "units", t.units);
@@ -25,13 +25,19 @@ void write_table_group(hid_t parent, const Table& t, int compression) {
   for (const Axis& a : t.axes) axes += (axes.empty() ? "" : ",") + a.name;
   h5::write_string_attr(group, "axes", axes);
   for (const auto& [k, v] : t.attributes) h5::write_string_attr(group, k, v);
+  if (lean) h5::write_string_attr(group, "storage", "lean");
   std::vector<hsize_t> dims;
   for (std::size_t n : t.shape()) dims.push_back(n);
   std::vector<h5::Handle> data;
-  data.push_back(h5::write_doubles(group, "value", dims, t.values(), compression));
-  data.push_back(h5::write_doubles(group, "stderr", dims, t.stderrs(), compression));
-  data.push_back(h5::write_doubles(group, "sum", dims, t.sum, compression));
-  data.push_back(h5::write_doubles(group, "sum_sq", dims, t.sum_sq, compression));
+  if (lean) {
+    data.push_back(h5::write_floats(group, "value", dims, t.values(), compression));
+    data.push_back(h5::write_floats(group, "stderr", dims, t.stderrs(), compression));
+  } else {
+    data.push_back(h5::write_doubles(group, "value", dims, t.values(), compression));
+    data.push_back(h5::write_doubles(group, "stderr", dims, t.stderrs(), compression));
+    data.push_back(h5::write_doubles(group, "sum", dims, t.sum, compression));
+    data.push_back(h5::write_doubles(group, "sum_sq", dims, t.sum_sq, compression));
+  }
   for (std::size_t d = 0; d < t.axes.size(); ++d) {
     const Axis& a = t.axes[d];
     std::vector<double> pts(a.size());
@@ -49,8 +55,19 @@ void write_table_group(hid_t parent, const Table& t, int compression) {
   }
 }
 
+std::string table_group_storage(hid_t parent, const std::string& name) {
+  h5::Handle group = h5::open_group(parent, name);
+  return h5::has_attr(group, "storage") ? h5::read_string_attr(group, "storage") : "full";
+}
+
 Table read_table_group(hid_t parent, const std::string& name) {
   h5::Handle group = h5::open_group(parent, name);
+  if (h5::has_attr(group, "storage")) {
+    const std::string storage = h5::read_string_attr(group, "storage");
+    if (storage == "lean")
+      throw std::runtime_error("table " + name + " is lean storage (float32 value and stderr, no sums): it cannot be merged or resumed");
+    throw std::runtime_error("table " + name + " has an unknown storage \"" + storage + "\"");
+  }
   std::vector<Axis> axes;
   std::stringstream ss(h5::read_string_attr(group, "axes"));
   for (std::string a; std::getline(ss, a, ',');) {

@@ -4,6 +4,11 @@
 //   units, description, batches, axes and the table's notes; one dimension
 //   scale per axis (bin centres or points) and <axis>_edges for binned axes.
 // Written without time tracking (see h5_util.h), optionally gzip-compressed.
+//
+// Lean storage (paper-scale datasets that will not be merged further): value
+// and stderr as float32, no sum nor sum_sq, and the attribute storage = "lean"
+// marking it. Such a table cannot be read back as a Table (the sums are gone):
+// read_table_group refuses it with a message that says so.
 #include <hdf5.h>
 
 #include <string>
@@ -12,7 +17,9 @@
 
 namespace mcref {
 
-void write_table_group(hid_t parent, const Table& table, int compression);
+void write_table_group(hid_t parent, const Table& table, int compression, bool lean = false);
+// The group's storage attribute: "lean", or "full" when absent.
+std::string table_group_storage(hid_t parent, const std::string& name);
 Table read_table_group(hid_t parent, const std::string& name);
 
 }  // namespace mcref

@@ -5,19 +5,19 @@
 
 namespace mcref {
 
-std::vector<Table> simulate_micrograin(const Experiment& ex, Progress& progress, std::size_t* grains) {
-  std::vector<std::vector<Table>> tables;
+std::vector<Table> simulate_micrograin(const Experiment& ex, const BatchLoop& loop, std::size_t* grains) {
+  BatchLoop::Tables tables;
   for (const Measure& m : ex.measures) tables.push_back(estimator_for(m.quantity).make_tables(m, ex));
-  for (int b = 0; b < ex.run.batches; ++b) {
+  loop.run(ex.run.batches, tables, [&](int b, BatchLoop::Tables& into) {
     const MicrograinField field(ex.micrograin, micrograin_realization_seed(ex.run.seed, static_cast<std::uint64_t>(b)));
     if (grains) *grains = field.grain_count();
     for (std::size_t k = 0; k < ex.measures.size(); ++k) {
       const Measure& m = ex.measures[k];
       const StreamKey key{ex.run.seed, static_cast<std::uint64_t>(b), k};
-      estimator_for(m.quantity).add_batch(field, ex, m, key, tables[k]);
-      progress.advance(work_units(m));
+      estimator_for(m.quantity).add_batch(field, ex, m, key, into[k]);
+      loop.progress().advance(work_units(m));
     }
-  }
+  });
   return flatten(std::move(tables));
 }
 

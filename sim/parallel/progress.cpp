@@ -5,11 +5,15 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "sim/parallel/communicator.h"
+
 namespace mcref {
 
 bool Progress::interactive(bool quiet) {
   const char* ci = std::getenv("CI");
-  return !quiet && isatty(STDERR_FILENO) && !(ci && *ci);
+  // Under mpirun, a rank's stdout is a terminal when mpirun's is, its stderr never.
+  const bool terminal = isatty(STDERR_FILENO) || (MpiSession::active() && isatty(STDOUT_FILENO));
+  return !quiet && terminal && !(ci && *ci);
 }
 
 Progress::Progress(std::string label, double total_work, bool quiet)

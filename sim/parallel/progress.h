@@ -1,6 +1,7 @@
 #pragma once
 // A progress line with an ETA on a terminal; silent when --quiet, when stderr
-// is not a terminal, or in CI (CI env variable set). One summary line at the end
+// is not a terminal, or in CI (CI env variable set). Under MPI, callers draw
+// it on rank 0 only, over the whole job. One summary line at the end
 // is printed by the caller.
 #include <chrono>
 #include <string>

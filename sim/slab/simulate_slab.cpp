@@ -45,14 +45,14 @@ Table energy_table(const Measure& m) {
 
 }  // namespace
 
-std::vector<Table> simulate_slab(const Experiment& ex, Progress& progress) {
+std::vector<Table> simulate_slab(const Experiment& ex, const BatchLoop& loop) {
   const volume::SlabMedium medium(ex.slab);
-  std::vector<std::vector<Table>> tables;
+  BatchLoop::Tables tables;
   for (const Measure& m : ex.measures) {
     tables.push_back(make_brdf_tables(m.name, m.theta_i, m.phi_i, slab_layout(m, ex)));
     if (writes_energy_table(m, ex)) tables.back().push_back(energy_table(m));
   }
-  for (int b = 0; b < ex.run.batches; ++b) {
+  loop.run(ex.run.batches, tables, [&](int b, BatchLoop::Tables& into) {
     for (std::size_t k = 0; k < ex.measures.size(); ++k) {
       const Measure& m = ex.measures[k];
       const BrdfLayout layout = slab_layout(m, ex);
@@ -83,11 +83,11 @@ std::vector<Table> simulate_slab(const Experiment& ex, Progress& progress) {
             for (double x : e) energy.push_back(x / static_cast<double>(m.samples));
           }
         }
-      add_brdf_batch(sums, static_cast<double>(m.samples), layout, tables[k]);
-      if (writes_energy_table(m, ex)) tables[k].back().add_batch(energy);
-      progress.advance(work_units(m));
+      add_brdf_batch(sums, static_cast<double>(m.samples), layout, into[k]);
+      if (writes_energy_table(m, ex)) into[k].back().add_batch(energy);
+      loop.progress().advance(work_units(m));
     }
-  }
+  });
   return flatten(std::move(tables));
 }
 

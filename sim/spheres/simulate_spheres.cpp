@@ -10,15 +10,15 @@
 
 namespace mcref {
 
-std::vector<Table> simulate_spheres(const Experiment& ex, Progress& progress) {
-  std::vector<std::vector<Table>> tables;
+std::vector<Table> simulate_spheres(const Experiment& ex, const BatchLoop& loop) {
+  BatchLoop::Tables tables;
   bool needs_field = false;
   for (const Measure& m : ex.measures) {
     const bool phase = m.quantity == "phase";
     tables.push_back(phase ? make_phase_tables(m, ex) : make_sphere_brdf_tables(m, ex));
     needs_field = needs_field || (!phase && ex.spheres.placement != SpherePlacement::volumetric);
   }
-  for (int b = 0; b < ex.run.batches; ++b) {
+  loop.run(ex.run.batches, tables, [&](int b, BatchLoop::Tables& into) {
     std::unique_ptr<SphereField> field;
     if (needs_field) {
       Rng rng(stream_seed({ex.run.seed, static_cast<std::uint64_t>(b), kGeometryStream}));
@@ -27,11 +27,11 @@ std::vector<Table> simulate_spheres(const Experiment& ex, Progress& progress) {
     for (std::size_t k = 0; k < ex.measures.size(); ++k) {
       const Measure& m = ex.measures[k];
       const StreamKey key{ex.run.seed, static_cast<std::uint64_t>(b), k};
-      if (m.quantity == "phase") add_phase_batch(ex, m, key, tables[k]);
-      else add_sphere_brdf_batch(field.get(), ex, m, key, tables[k]);
-      progress.advance(work_units(m));
+      if (m.quantity == "phase") add_phase_batch(ex, m, key, into[k]);
+      else add_sphere_brdf_batch(field.get(), ex, m, key, into[k]);
+      loop.progress().advance(work_units(m));
     }
-  }
+  });
   return flatten(std::move(tables));
 }
 

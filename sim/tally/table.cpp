@@ -77,6 +77,15 @@ void Table::merge(const Table& other) {
     sum_sq[i] += other.sum_sq[i];
   }
   batches += other.batches;
+  for (const auto& [key, text] : other.attributes) {
+    auto it = attributes.find(key);
+    if (it == attributes.end()) {
+      attributes[key] = text;
+      continue;
+    }
+    for (const char* count : kCountAttributes)
+      if (key == count) it->second = std::to_string(std::stoll(it->second) + std::stoll(text));
+  }
 }
 
 double Table::value(std::size_t i) const { return batches > 0 ? sum[i] / batches : NAN; }

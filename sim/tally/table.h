@@ -41,6 +41,10 @@ struct Axis {
   }
 };
 
+// Attributes that count events over batches (integers), e.g. the phase
+// estimator's rays that missed every sphere.
+inline const char* const kCountAttributes[] = {"missed_rays"};
+
 struct Table {
   std::string name;       // group name in the HDF5 file
   std::string quantity;   // "p1", "ndf", "tau_plus", ...
@@ -59,7 +63,9 @@ struct Table {
   std::size_t index(const std::vector<std::size_t>& idx) const;
   // Adds one batch's estimates (one per cell).
   void add_batch(const std::vector<double>& estimate);
-  // Adds another table's batches (same name, axes); exact merge.
+  // Adds another table's batches (same name, axes); exact merge. Count
+  // attributes (kCountAttributes) add up; other attributes missing here are
+  // taken from `other`.
   void merge(const Table& other);
   double value(std::size_t i) const;
   double stderr_of(std::size_t i) const;

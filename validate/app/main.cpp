@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sim/experiment/config_error.h"
+#include "sim/parallel/communicator.h"
 #include "validate/app/verbs.h"
 
 namespace {
@@ -27,12 +28,26 @@ const char* kUsage =
     "\n"
     "`mcref <verb> --help` explains each verb.\n";
 
+// Under MPI, an error every rank met alike is printed by rank 0 only; an
+// error one rank met alone while the others wait for it ends the job.
+int fail(int code, const char* what) {
+  const mcref::Communicator& world = mcref::Communicator::world();
+  if (world.size() > 1 && mcref::DistributedStep::broken()) {
+    std::fprintf(stderr, "mcref: error (rank %d of %d): %s\n", world.rank(), world.size(), what);
+    std::fflush(stderr);
+    mcref::MpiSession::abort(code);
+  }
+  if (world.root()) std::fprintf(stderr, "mcref: error: %s\n", what);
+  return code;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   // HDF5's exit-time cleanup closes again a file whose close failed (a full
   // disk) and crashes; every mcref file is closed explicitly, so it is not needed.
   H5dont_atexit();
+  const mcref::MpiSession mpi(&argc, &argv);
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::fputs(kUsage, args.empty() ? stderr : stdout);
@@ -50,13 +65,10 @@ int main(int argc, char** argv) {
     if (verb == "export-brdf") return mcref::cli::export_brdf(args);
     if (verb == "dataset") return mcref::cli::dataset(args, command_line);
     if (verb == "merge") return mcref::cli::merge(args);
-    std::fprintf(stderr, "mcref: error: unknown verb '%s' (allowed: simulate, validate, info, export-vdb, export-brdf, dataset, merge)\n", verb.c_str());
-    return 2;
+    return fail(2, ("unknown verb '" + verb + "' (allowed: simulate, validate, info, export-vdb, export-brdf, dataset, merge)").c_str());
   } catch (const mcref::ConfigError& e) {
-    std::fprintf(stderr, "mcref: error: %s\n", e.what());
-    return 2;
+    return fail(2, e.what());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "mcref: error: %s\n", e.what());
-    return 1;
+    return fail(1, e.what());
   }
 }

@@ -20,7 +20,9 @@ const char* kHelp =
     "  --seed N         overrides run.seed\n"
     "  --threads N      worker threads (tables are identical for any N)\n"
     "  --set key=value  overrides a key, e.g. --set geometry.tau0=0.3 --set measure.0.samples=1e5\n"
-    "  --quiet          no progress line\n";
+    "  --quiet          no progress line\n"
+    "Under mpirun -np N, the batches are spread over the N ranks and rank 0 writes\n"
+    "TABLES.h5: the same tables as one process.\n";
 }  // namespace
 
 int simulate(const std::vector<std::string>& raw, const std::string& command_line) {
@@ -35,13 +37,15 @@ int simulate(const std::vector<std::string>& raw, const std::string& command_lin
   if (a.seed >= 0) sets.push_back("run.seed=" + std::to_string(a.seed));
   const Experiment ex = load_experiment(a.positional[0], sets);
   // Fail before simulating if the output cannot be written.
-  check_output_file(a.output, {a.positional[0]});
   SimulateOptions opt;
+  opt.ranks = &Communicator::world();  // under mpirun: the batches spread over the ranks
+  check_on_root(*opt.ranks, [&] { check_output_file(a.output, {a.positional[0]}); });
   opt.threads = a.threads;
   opt.quiet = a.quiet;
   SimulateSummary summary;
   TableFile out;
   out.tables = mcref::simulate(ex, opt, &summary);
+  if (!opt.ranks->root()) return 0;  // rank 0 holds the tables and writes them
   out.provenance = make_provenance(ex.text, ex.file, ex.run.seed, command_line);
   write_table_file(a.output, out);
   if (!a.quiet)

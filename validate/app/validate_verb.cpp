@@ -17,7 +17,9 @@ const char* kHelp =
     "table with the analytic models, and writes OUTDIR/results.json,\n"
     "OUTDIR/plots/*.png and OUTDIR/report.html.\n"
     "Exit status: 0 if every check passes, 1 if any fails, 2 on bad input.\n"
-    "  --force    simulate again even when cached tables are current\n";
+    "  --force    simulate again even when cached tables are current\n"
+    "Under mpirun -np N, each case's batches are spread over the N ranks (the same\n"
+    "tables as one process); rank 0 checks the models and writes everything.\n";
 }  // namespace
 
 int validate(const std::vector<std::string>& raw, const std::string& command_line) {
@@ -29,8 +31,9 @@ int validate(const std::vector<std::string>& raw, const std::string& command_lin
   if (a.positional.size() != 1) throw ConfigError("command line", "", "mcref validate needs exactly one SUITE.toml (see --help)");
   if (a.output.empty()) throw ConfigError("command line", "-o", "an output directory is required (-o OUTDIR)");
   const Suite suite = load_suite(a.positional[0]);
-  check_output_directory(a.output, {a.positional[0]});
   SuiteOptions o;
+  o.ranks = &Communicator::world();  // under mpirun: each case's batches spread over the ranks
+  check_on_root(*o.ranks, [&] { check_output_directory(a.output, {a.positional[0]}); });
   o.out_dir = a.output;
   o.threads = a.threads;
   o.quiet = a.quiet;

@@ -1,0 +1,82 @@
+#pragma once
+// The ranks mcref runs on: under mpirun (or srun) in an MPI build, the MPI
+// world; run plainly, or without MPI, one process (MPI is not even
+// initialised, so there is no MPI output). Only the main thread of a rank
+// talks to the others (MPI_THREAD_FUNNELED).
+//
+// Errors: input is checked the same way on every rank before the ranks
+// depend on each other, so a bad input fails on all of them alike (rank 0
+// prints the line). An error inside a DistributedStep (a rank alone, while
+// the others wait for it) ends the whole job (MPI_Abort).
+#include <functional>
+#include <string>
+
+namespace mcref {
+
+class Communicator {
+ public:
+  static constexpr int kAnyRank = -1;
+
+  // This process alone.
+  static const Communicator& self();
+  // Every rank of the job (self() when not launched by an MPI launcher).
+  static const Communicator& world();
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool root() const { return rank_ == 0; }
+
+  // Point to point; `tag` keeps message kinds apart.
+  void send(int to, int tag, const std::string& bytes) const;
+  // Waits for a message from `from` (or kAnyRank) with `tag`; the waiting rank
+  // sleeps between polls, so it leaves its core to the threads that compute.
+  std::string receive(int from, int tag, int* sender = nullptr) const;
+  // A message from `from` with `tag` is waiting (does not wait).
+  bool pending(int from, int tag) const;
+  // Rank 0's `text` on every rank.
+  void broadcast(std::string& text) const;
+
+ private:
+  Communicator(int rank, int size, bool mpi) : rank_(rank), size_(size), mpi_(mpi) {}
+  int rank_ = 0, size_ = 1;
+  bool mpi_ = false;
+  friend class MpiSession;
+};
+
+// Initialises MPI for the life of main() when launched by an MPI launcher
+// (OMPI_COMM_WORLD_SIZE, PMI_SIZE or PMIX_RANK set) in an MPI build.
+class MpiSession {
+ public:
+  MpiSession(int* argc, char*** argv);
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+  // Ends every rank of the job now (an error a rank met on its own).
+  [[noreturn]] static void abort(int code);
+  static bool active();
+};
+
+// Marks the span in which ranks wait for each other: an exception leaving
+// it on one rank must end the job (main asks DistributedStep::broken()).
+class DistributedStep {
+ public:
+  DistributedStep();
+  ~DistributedStep();
+  DistributedStep(const DistributedStep&) = delete;
+  DistributedStep& operator=(const DistributedStep&) = delete;
+  // An exception left a DistributedStep on this rank.
+  static bool broken();
+
+ private:
+  int uncaught_;
+};
+
+// Throws ConfigError(`error`) on every rank if rank 0's `error` is not empty
+// (rank 0 found it alone, e.g. while scanning files it alone may touch).
+void agree_on_error(const Communicator& comm, std::string error);
+
+// Runs `check` on rank 0 alone (e.g. the output path checks: only rank 0
+// writes there) and throws its ConfigError on every rank.
+void check_on_root(const Communicator& comm, const std::function<void()>& check);
+
+}  // namespace mcref
