@@ -58,12 +58,24 @@ double lrpb23_base_part(const GrainField& f, const MicroSurface& base, Vec3 i, V
 // Delta energy of LRPB23 Eq. 1 (smooth base): (1 - w+(i, mirror(i))) F_base(cos theta_i).
 double lrpb23_base_delta_energy(const GrainField& f, const MicroSurface& base, Vec3 i);
 
+// Two-direction masking of vNDF Eq. 1: the product of the one-way terms
+// (G_dist(i, h) G_dist(o, h); base: V(i) V(o), Eq. 24), or the exact union
+// form exp(-rho' |K_i U K_o|) (two_way_masking.h, pore_visibility.h; issue #15).
+enum class TwoWay { Product, Union };
+
 // vNDF paper Eq. 1, grain term: tau0 f_S, single scattering on grains with
-// G_dist(i, h) G_dist(o, h) (see above); the specular part in closed form, the
-// diffuse part by quadrature over the unit-space normals.
-double gdist_grain_single_scattering(const GrainField& f, const MicroSurface& grain, Vec3 i, Vec3 o);
-// Its diffuse geometry factor (1/pi) tau0 / (|i.n||o.n|) ∫ D <i.m><o.m> T_i T_o G_dist G_dist dm,
+// G_dist(i, h) G_dist(o, h) (see above) or G_dist(i, o, h); the specular part in
+// closed form, the diffuse part by quadrature over the unit-space normals.
+double gdist_grain_single_scattering(const GrainField& f, const MicroSurface& grain, Vec3 i, Vec3 o,
+                                     TwoWay masking = TwoWay::Product);
+// Its diffuse geometry factor (1/pi) tau0 / (|i.n||o.n|) ∫ D <i.m><o.m> T_i T_o G dm,
 // T = 1 - F_dielectric(ior) of the local angle (ior <= 1: T = 1, Lambertian).
-double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior);
+double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior, TwoWay masking = TwoWay::Product);
+
+// vNDF paper Eq. 1, base term V_p(i, o) f_B with V_p = P(base point in a pore, seen
+// from i and o): (1 - tau0) V(i) V(o) (= lrpb23_base_part) or the union form.
+double gdist_base_part(const GrainField& f, const MicroSurface& base, Vec3 i, Vec3 o, TwoWay masking);
+// Its delta energy (smooth base): V_p(i, mirror(i)) F_base(cos theta_i).
+double gdist_base_delta_energy(const GrainField& f, const MicroSurface& base, Vec3 i, TwoWay masking);
 
 }  // namespace mcref::micrograin

@@ -44,6 +44,7 @@ struct Spec {
   enum class Form { Lrpb23, Gdist } form;
   mg::LambdaMethod lambda = mg::LambdaMethod::Quadrature;
   bool simulated_vp = false;  // base term with V_p(i, o) measured (validate/micrograin/simulated_pore_base.h)
+  mg::TwoWay masking = mg::TwoWay::Product;  // two-direction masking of the Gdist form (issue #15)
 };
 
 const std::map<std::string, Spec>& specs() {
@@ -65,6 +66,10 @@ const std::map<std::string, Spec>& specs() {
       {"gdist_base_simvp", {P::Base, F::Gdist, L::Quadrature, true}},
       {"gdist_total_simvp", {P::Total, F::Gdist, L::Quadrature, true}},
       {"gdist_albedo_simvp", {P::Total, F::Gdist, L::Quadrature, true}},
+      {"gdist_base_union", {P::Base, F::Gdist, L::Quadrature, false, mg::TwoWay::Union}},
+      {"gdist_grain_union", {P::Grain, F::Gdist, L::Quadrature, false, mg::TwoWay::Union}},
+      {"gdist_total_union", {P::Total, F::Gdist, L::Quadrature, false, mg::TwoWay::Union}},
+      {"gdist_albedo_union", {P::Total, F::Gdist, L::Quadrature, false, mg::TwoWay::Union}},
   };
   return s;
 }
@@ -104,6 +109,20 @@ std::vector<ModelInfo> model_list() {
        "directional albedo of vNDF Eq. 1 with G_dist and V_p(i, o) measured (its noise enters z); grain and base "
        "parts in the order-1 components",
        "micrograin", ""},
+      {"gdist_base_union", "brdf", true,
+       "(1 - tau0) V_p(i, o) f_B (vNDF Eq. 1) with V_p = exp(-rho (|K_i U K_o| - pi)) in closed form: exact for a "
+       "single event on the base (issue #15)",
+       "micrograin", "order1_base"},
+      {"gdist_grain_union", "brdf", true,
+       "tau0 f_S (vNDF Eq. 1) with the two-direction masking G_dist(i, o, h) = exp(-rho (|K_i(h) U K_o(h)| - "
+       "sigma(n, h))): exact for a single event on a grain (issue #15)",
+       "micrograin", "order1_grain"},
+      {"gdist_total_union", "brdf", false, "tau0 f_S + V_p f_B (vNDF Eq. 1), both with the union masking (single scattering)",
+       "micrograin", "total"},
+      {"gdist_albedo_union", "albedo", false,
+       "directional albedo of vNDF Eq. 1 with the union masking, delta lobe included, and of its grain and base parts "
+       "(order-1 components)",
+       "micrograin", ""},
   };
   return m;
 }
@@ -119,19 +138,19 @@ void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& m
         v += mg::lrpb23_grain_part(f, g, i, o, s.lambda);
       } else if (g.type == mg::MicroSurface::Type::Lambertian || g.type == mg::MicroSurface::Type::DiffuseSpecular) {
         const bool lambert = g.type == mg::MicroSurface::Type::Lambertian;
-        if (geometry < 0) geometry = mg::gdist_diffuse_geometry(f, i, o, lambert ? 0.0 : g.ior);
+        if (geometry < 0) geometry = mg::gdist_diffuse_geometry(f, i, o, lambert ? 0.0 : g.ior, s.masking);
         if (lambert) {
           v += g.kd * geometry;
         } else {
           mg::MicroSurface specular_only = g;
           specular_only.kd = 0;  // its diffuse term vanishes: the specular lobe alone
-          v += mg::body_factor(g) * geometry + mg::gdist_grain_single_scattering(f, specular_only, i, o);
+          v += mg::body_factor(g) * geometry + mg::gdist_grain_single_scattering(f, specular_only, i, o, s.masking);
         }
       } else {
-        v += mg::gdist_grain_single_scattering(f, g, i, o);
+        v += mg::gdist_grain_single_scattering(f, g, i, o, s.masking);
       }
     }
-    if (s.part != Spec::Part::Grain) v += mg::lrpb23_base_part(f, b, i, o);
+    if (s.part != Spec::Part::Grain) v += mg::gdist_base_part(f, b, i, o, s.masking);
     out[k] = v;
   }
 }
@@ -176,7 +195,7 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
     const std::size_t a = dir / pi.size(), b = dir % pi.size();
     const Vec3 wi = spherical_direction(ti.values[a], pi.values[b]);
     double delta[3];
-    for (int k = 0; k < 3; ++k) delta[k] = mg::lrpb23_base_delta_energy(f, channel_of(ex.materials.base, k), wi);
+    for (int k = 0; k < 3; ++k) delta[k] = mg::gdist_base_delta_energy(f, channel_of(ex.materials.base, k), wi, s.masking);
     if (delta_table) {
       for (std::size_t k = 0; k < 3; ++k) {
         out[t.index({a, b, base, k})] = delta[k];
@@ -189,7 +208,8 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
     // the multiple scattering it leaves out.
     double e[2][3] = {{0, 0, 0}, {0, 0, 0}};
     const double span = ex.isotropic ? kPi : 2 * kPi;
-    const Spec grain{Spec::Part::Grain, s.form, s.lambda}, base_part{Spec::Part::Base, s.form, s.lambda};
+    const Spec grain{Spec::Part::Grain, s.form, s.lambda, false, s.masking};
+    const Spec base_part{Spec::Part::Base, s.form, s.lambda, false, s.masking};
     for (std::size_t u = 0; u < gm.x.size(); ++u)
       for (std::size_t v = 0; v < gp.x.size(); ++v) {
         const double mu = 0.5 + 0.5 * gm.x[u], phi = 0.5 * span * (1 + gp.x[v]);

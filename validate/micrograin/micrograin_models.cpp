@@ -11,6 +11,7 @@
 #include "models/micrograin/grain_field.h"
 #include "models/micrograin/height_masking.h"
 #include "models/micrograin/ndf.h"
+#include "models/micrograin/pore_visibility.h"
 #include "models/micrograin/smith_lambda.h"
 #include "models/micrograin/unit_space.h"
 #include "models/micrograin/visible_filling_factor.h"
@@ -44,6 +45,9 @@ std::vector<ModelInfo> geometry_model_list() {
        "V(i) V(o), V(d) = (1 - tau+(d)) / (1 - tau0) (LRPB23 Eq. 22)"},
       {"pore_visibility_independence_eq24", "pore_visibility", false,
        "independent visibilities, V(i) V(o): the assumption behind w+ (LRPB23 Eq. 23-24)"},
+      {"pore_visibility_union", "pore_visibility", true,
+       "exp(-rho (|K_i U K_o| - pi)): one Poisson void probability over the union of the two shadow sets of "
+       "Eq. 22, in closed form (issue #15)"},
       {"vndf_eq13", "vndf", true, "visible NDF with height-correlated masking (vNDF paper Eq. 6/11-13)"},
       {"vndf_sampler", "vndf", false,
        "histogram of the vNDF sampler (vNDF paper Sec. 4, Listings 1-4; theta by the tabulated sigma^-1, phi by "
@@ -210,12 +214,11 @@ std::vector<double> evaluate_geometry_model(const std::string& model, const Tabl
     return out;
   }
   if (t.quantity == "pore_visibility" || t.quantity == "pore_visibility_independent") {
-    const double open = 1 - geometry.tau0;
     for_each_cell(t, [&](std::size_t k, const std::vector<std::size_t>& i) {
       const double phi_i = phi_i_of(t, i);
       const Vec3 wi = spherical_direction(t.axes[0].values[i[0]], phi_i);
       const Vec3 wo = spherical_direction(t.axes[1].values[i[1]], phi_i + t.axes[2].values[i[2]]);
-      out[k] = ((1 - mg::tau_plus(f, wi)) / open) * ((1 - mg::tau_plus(f, wo)) / open);
+      out[k] = model == "pore_visibility_union" ? mg::pore_visibility_union(f, wi, wo) : mg::pore_visibility_product(f, wi, wo);
     });
     return out;
   }
