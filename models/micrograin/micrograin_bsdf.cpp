@@ -80,20 +80,22 @@ double flat_delta_energy(const MicroSurface& s, double c) {
                                                                                                    : 0.0;
 }
 
-double lrpb23_surface(const GrainField& f, const MicroSurface& g, Vec3 i, Vec3 o, LambdaMethod method) {
+double lrpb23_surface(const GrainField& f, const MicroSurface& g, Vec3 i, Vec3 o, LambdaMethod method, SmithG2 g2) {
   double value = 0;
   if (g.type == MicroSurface::Type::Lambertian) value += g.kd / kPi;  // T = 1
   if (g.type == MicroSurface::Type::DiffuseSpecular) value += body_term(g, i.z, o.z);
   if (g.type == MicroSurface::Type::Conductor || g.type == MicroSurface::Type::DiffuseSpecular) {
     const Vec3 h = half_vector(i, o);
-    const double G = 1 / (1 + lambda_of(f, i, method) + lambda_of(f, o, method));  // Heitz 2014 Eq. 99
+    const double li = lambda_of(f, i, method), lo = lambda_of(f, o, method);
+    const double G = g2 == SmithG2::Separable ? 1 / ((1 + li) * (1 + lo))  // Heitz 2014 Eq. 98
+                                              : 1 / (1 + li + lo);         // Heitz 2014 Eq. 99
     value += ndf(f, h) * G * specular_fresnel(g, dot(i, h)) / (4 * i.z * o.z);      // Eq. 2
   }
   return value;
 }
 
-double lrpb23_grain_part(const GrainField& f, const MicroSurface& g, Vec3 i, Vec3 o, LambdaMethod method) {
-  return layer_weight(f, i, o) * lrpb23_surface(f, g, i, o, method);  // Eq. 1, 24
+double lrpb23_grain_part(const GrainField& f, const MicroSurface& g, Vec3 i, Vec3 o, LambdaMethod method, SmithG2 g2) {
+  return layer_weight(f, i, o) * lrpb23_surface(f, g, i, o, method, g2);  // Eq. 1, 24
 }
 
 double lrpb23_base_part(const GrainField& f, const MicroSurface& base, Vec3 i, Vec3 o) {
@@ -117,11 +119,11 @@ double gdist_base_delta_energy(const GrainField& f, const MicroSurface& base, Ve
 }
 
 double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior, TwoWay masking) {
-  // Unit-space polar angle of the normal: theta'; split where the shadows of
-  // i and o start (h = sin theta_d', i.e. theta' = pi/2 - theta_d').
-  const double ti = spherical_theta(to_unit_direction(f, i)), to = spherical_theta(to_unit_direction(f, o));
-  std::vector<double> cuts{0.0, kPi / 2 - std::max(ti, to), kPi / 2 - std::min(ti, to), kPi / 2};
-  static const GaussLegendre rule(16), arc_rule(16);
+  // Both integrals are split at their kinks and refined adaptively to about
+  // 1e-8 relative (issue #15, part 4): first a fixed 16-point rule per piece
+  // sets the scale, then integrate_adaptive meets kRel of it.
+  constexpr double kRel = 1e-8;
+  static const GaussLegendre rule(16);
   const bool fresnel = ior > 1;
   // Ring integrand at azimuth a: <i.m>+ <o.m>+ T |M m'|, with |M m'| <d.m> = A + B cos a + C sin a
   // (M m' = (st beta_x cos a, st beta_y sin a, h)); split the ring where either sinusoid vanishes.
@@ -146,28 +148,35 @@ double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior, T
       if (fresnel) t = (1 - fresnel_dielectric(im, ior)) * (1 - fresnel_dielectric(om, ior));
       return len * im * om * t;
     };
+    double coarse = 0;
+    for (std::size_t c = 0; c + 1 < cuts_a.size(); ++c)
+      if (cuts_a[c + 1] - cuts_a[c] > 1e-14) coarse += std::fabs(rule.integrate(integrand, cuts_a[c], cuts_a[c + 1]));
     double ring = 0;
     for (std::size_t c = 0; c + 1 < cuts_a.size(); ++c)
-      if (cuts_a[c + 1] - cuts_a[c] > 1e-14) ring += arc_rule.integrate(integrand, cuts_a[c], cuts_a[c + 1]);
+      if (cuts_a[c + 1] - cuts_a[c] > 1e-14)
+        ring += integrate_adaptive(integrand, cuts_a[c], cuts_a[c + 1], kRel * coarse / cuts_a.size() + 1e-300);
     return ring;
   };
+  // Unit-space polar angle theta' of the normal: split where the ring of either
+  // direction starts to turn away (theta' = pi/2 - theta'_d), which is also where
+  // its distant shadow starts (h = sin theta'_d).
+  auto polar = [&](double th) {
+    const double h = std::cos(th), st = std::sin(th);
+    const double g2 = masking == TwoWay::Union ? distant_masking_union(f, i, o, h)
+                                               : distant_masking(f, i, h) * distant_masking(f, o, h);
+    // D(m) dw_m = D1(h) |M m'| dw_m' (vNDF Eq. 7 with the Jacobian of the
+    // unit-space map m = M m' / |M m'|): D1 is constant on the ring.
+    return st * unit_ndf(f.tau0, h) * ring_integral(h, st) * g2;
+  };
+  const double ti = spherical_theta(to_unit_direction(f, i)), to = spherical_theta(to_unit_direction(f, o));
+  const std::vector<double> cuts{0.0, kPi / 2 - std::max(ti, to), kPi / 2 - std::min(ti, to), kPi / 2};
+  double coarse = 0;
+  for (std::size_t c = 0; c + 1 < cuts.size(); ++c)
+    if (cuts[c + 1] - cuts[c] > 1e-12) coarse += std::fabs(rule.integrate(polar, cuts[c], cuts[c + 1]));
   double sum = 0;
-  for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
-    const double a = cuts[c], b = cuts[c + 1];
-    if (b - a <= 1e-12) continue;
-    for (std::size_t k = 0; k < rule.x.size(); ++k) {
-      const double th = 0.5 * (a + b) + 0.5 * (b - a) * rule.x[k];
-      const double h = std::cos(th), st = std::sin(th);
-      const double g2 = masking == TwoWay::Union ? distant_masking_union(f, i, o, h)
-                                                 : distant_masking(f, i, h) * distant_masking(f, o, h);
-      // D(m) dw_m = D1(h) |M m'| dw_m' (vNDF Eq. 7 with the Jacobian of the
-      // unit-space map m = M m' / |M m'|): D1 is constant on the ring.
-      const double d1 = unit_ndf(f.tau0, h);
-      sum += 0.5 * (b - a) * rule.w[k] * st * d1 * ring_integral(h, st) * g2;
-    }
-  }
-  const double tau0 = f.tau0;
-  return tau0 * sum / (kPi * i.z * o.z);
+  for (std::size_t c = 0; c + 1 < cuts.size(); ++c)
+    if (cuts[c + 1] - cuts[c] > 1e-12) sum += integrate_adaptive(polar, cuts[c], cuts[c + 1], kRel * coarse / 3 + 1e-300);
+  return f.tau0 * sum / (kPi * i.z * o.z);
 }
 
 double gdist_grain_single_scattering(const GrainField& f, const MicroSurface& g, Vec3 i, Vec3 o, TwoWay masking) {

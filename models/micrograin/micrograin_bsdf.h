@@ -8,7 +8,7 @@
 //   f^S = K_d / pi T(i, o) + D(h) G(i, o) F(i.h) / (4 |i.n| |o.n|),
 // with the micrograin D (Eq. 17), G = 1 / (1 + Lambda(i) + Lambda(o)) (the
 // height-correlated Smith form of Heitz 2014, from G1 = 1/(1 + Lambda) as in
-// Sec. 5.2) with Lambda by the series n = 4 (Eq. 25), by quadrature, or the
+// Sec. 5.2; the text also reads as the separable G1(i) G1(o): SmithG2) with Lambda by the series n = 4 (Eq. 25), by quadrature, or the
 // GGX Lambda at alpha~ (Eq. 18). T = 1 for Lambertian grains; for
 // diffuse + specular grains T = (1 - F(i.n))(1 - F(o.n)) / (eta^2 (1 - K_d Fbar_int))
 // (Mitsuba's plastic, which LRPB23 say their T is inspired by; their exact
@@ -39,6 +39,11 @@ struct MicroSurface {
 
 enum class LambdaMethod { Series4, Quadrature, GgxEquivalent };
 
+// The two readings of LRPB23 Eq. 2's G "computed (cf. Heitz 2014) from
+// G1 = 1/(1 + Lambda)" (issue #15): height-correlated 1/(1 + Lambda(i) + Lambda(o))
+// (Heitz 2014 Eq. 99) or separable G1(i) G1(o) (Heitz 2014 Eq. 98; the authors' renderer).
+enum class SmithG2 { HeightCorrelated, Separable };
+
 // Smooth-interface Fresnel of a micro-BRDF's mirror lobe at cosine c (0 if it has none).
 double specular_fresnel(const MicroSurface& s, double c);
 
@@ -51,9 +56,11 @@ double flat_delta_energy(const MicroSurface& s, double cos_theta_i);
 double body_factor(const MicroSurface& s);
 
 // LRPB23 Eq. 2: f^S (grains).
-double lrpb23_surface(const GrainField& f, const MicroSurface& grain, Vec3 i, Vec3 o, LambdaMethod lambda);
+double lrpb23_surface(const GrainField& f, const MicroSurface& grain, Vec3 i, Vec3 o, LambdaMethod lambda,
+                      SmithG2 g2 = SmithG2::HeightCorrelated);
 // LRPB23 Eq. 1 without the base's delta lobe: w+ f^S and (1 - w+) f^B.
-double lrpb23_grain_part(const GrainField& f, const MicroSurface& grain, Vec3 i, Vec3 o, LambdaMethod lambda);
+double lrpb23_grain_part(const GrainField& f, const MicroSurface& grain, Vec3 i, Vec3 o, LambdaMethod lambda,
+                         SmithG2 g2 = SmithG2::HeightCorrelated);
 double lrpb23_base_part(const GrainField& f, const MicroSurface& base, Vec3 i, Vec3 o);
 // Delta energy of LRPB23 Eq. 1 (smooth base): (1 - w+(i, mirror(i))) F_base(cos theta_i).
 double lrpb23_base_delta_energy(const GrainField& f, const MicroSurface& base, Vec3 i);

@@ -45,6 +45,7 @@ struct Spec {
   mg::LambdaMethod lambda = mg::LambdaMethod::Quadrature;
   bool simulated_vp = false;  // base term with V_p(i, o) measured (validate/micrograin/simulated_pore_base.h)
   mg::TwoWay masking = mg::TwoWay::Product;  // two-direction masking of the Gdist form (issue #15)
+  mg::SmithG2 g2 = mg::SmithG2::HeightCorrelated;  // reading of LRPB23 Eq. 2's G (issue #15)
 };
 
 const std::map<std::string, Spec>& specs() {
@@ -58,6 +59,9 @@ const std::map<std::string, Spec>& specs() {
       {"lrpb23_grain_series4", {P::Grain, F::Lrpb23, L::Series4}},
       {"lrpb23_grain_quadrature", {P::Grain, F::Lrpb23, L::Quadrature}},
       {"lrpb23_grain_ggx", {P::Grain, F::Lrpb23, L::GgxEquivalent}},
+      {"lrpb23_separable", {P::Total, F::Lrpb23, L::Quadrature, false, mg::TwoWay::Product, mg::SmithG2::Separable}},
+      {"lrpb23_grain_separable",
+       {P::Grain, F::Lrpb23, L::Quadrature, false, mg::TwoWay::Product, mg::SmithG2::Separable}},
       {"lrpb23_base", {P::Base, F::Lrpb23}},
       {"gdist_grain", {P::Grain, F::Gdist}},
       {"gdist_total", {P::Total, F::Gdist}},
@@ -82,6 +86,12 @@ std::vector<ModelInfo> model_list() {
       {"lrpb23_grain_series4", "brdf", false, "LRPB23 w+ f^S (Eq. 1-2, 24), Lambda series n = 4", "micrograin", "order1_grain"},
       {"lrpb23_grain_quadrature", "brdf", false, "LRPB23 w+ f^S, Lambda by quadrature", "micrograin", "order1_grain"},
       {"lrpb23_grain_ggx", "brdf", false, "LRPB23 w+ f^S, Lambda of GGX at alpha~", "micrograin", "order1_grain"},
+      {"lrpb23_separable", "brdf", false,
+       "LRPB23 Eq. 1-2 read with the separable G = G1(i) G1(o) (Heitz 2014 Eq. 98), Lambda by quadrature", "micrograin",
+       "total"},
+      {"lrpb23_grain_separable", "brdf", false,
+       "LRPB23 w+ f^S with the separable G = G1(i) G1(o), Lambda by quadrature (the other reading of Eq. 2; issue #15)",
+       "micrograin", "order1_grain"},
       {"lrpb23_base", "brdf", false,
        "(1 - w+) f^B (LRPB23 Eq. 1, 24) = (1 - tau0) V(i) V(o) f_B (vNDF Eq. 1, independent pore visibilities)", "micrograin",
        "order1_base"},
@@ -135,7 +145,7 @@ void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& m
     double v = 0;
     if (s.part != Spec::Part::Base) {
       if (s.form == Spec::Form::Lrpb23) {
-        v += mg::lrpb23_grain_part(f, g, i, o, s.lambda);
+        v += mg::lrpb23_grain_part(f, g, i, o, s.lambda, s.g2);
       } else if (g.type == mg::MicroSurface::Type::Lambertian || g.type == mg::MicroSurface::Type::DiffuseSpecular) {
         const bool lambert = g.type == mg::MicroSurface::Type::Lambertian;
         if (geometry < 0) geometry = mg::gdist_diffuse_geometry(f, i, o, lambert ? 0.0 : g.ior, s.masking);
@@ -208,8 +218,8 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
     // the multiple scattering it leaves out.
     double e[2][3] = {{0, 0, 0}, {0, 0, 0}};
     const double span = ex.isotropic ? kPi : 2 * kPi;
-    const Spec grain{Spec::Part::Grain, s.form, s.lambda, false, s.masking};
-    const Spec base_part{Spec::Part::Base, s.form, s.lambda, false, s.masking};
+    const Spec grain{Spec::Part::Grain, s.form, s.lambda, false, s.masking, s.g2};
+    const Spec base_part{Spec::Part::Base, s.form, s.lambda, false, s.masking, s.g2};
     for (std::size_t u = 0; u < gm.x.size(); ++u)
       for (std::size_t v = 0; v < gp.x.size(); ++v) {
         const double mu = 0.5 + 0.5 * gm.x[u], phi = 0.5 * span * (1 + gp.x[v]);

@@ -38,6 +38,8 @@ std::vector<ModelInfo> geometry_model_list() {
       {"g1_g_dist", "g1", true, "projected-area average of the height-correlated G_dist (LRPB24) over the NDF"},
       {"g1_smith_quadrature", "g1", false, "Smith G1 = 1/(1 + Lambda), Lambda by quadrature of the exact NDF"},
       {"g1_smith_series_n4", "g1", false, "Smith G1 with Lambda from the series of LRPB23 Eq. 25, terms F0..F4"},
+      {"g1_smith_series_n6", "g1", false,
+       "Smith G1 with Lambda from the series of LRPB23 Eq. 25, terms F0..F6 (closed form for any k; issue #15)"},
       {"g1_smith_ggx_alpha_tilde", "g1", false, "Smith G1 of GGX at alpha~ (LRPB23 Eq. 18)"},
       {"g1_conditional_g_dist", "g1_conditional", true, "height-correlated masking G_dist(i, h(m)) (LRPB24)"},
       {"g1_conditional_smith", "g1_conditional", false, "Smith: G1(i) = 1/(1 + Lambda_quad(i)) for every front-facing m"},
@@ -145,7 +147,8 @@ std::vector<double> evaluate_geometry_model(const std::string& model, const Tabl
   const mg::GrainField f{geometry.tau0, geometry.beta_x, geometry.beta_y};
   const bool isotropic = !geometry.anisotropic();
   const double beta = geometry.beta_x;
-  if (!isotropic && (model == "ndf_ggx_alpha_tilde" || model == "g1_smith_series_n4" || model == "g1_smith_ggx_alpha_tilde"))
+  if (!isotropic && (model == "ndf_ggx_alpha_tilde" || model == "g1_smith_series_n4" || model == "g1_smith_series_n6" ||
+                      model == "g1_smith_ggx_alpha_tilde"))
     throw std::invalid_argument("model " + model + " is defined for isotropic grains only");
   std::vector<double> out(t.cells(), NAN);
   const double rho = mg::unit_density(geometry.tau0);
@@ -179,6 +182,7 @@ std::vector<double> evaluate_geometry_model(const std::string& model, const Tabl
       else if (model == "g1_exact_tau_plus") out[k] = mg::tau_plus(f, wi) / (geometry.tau0 * (1 + mg::lambda_quadrature(f, wi)));
       else if (model == "g1_smith_quadrature") out[k] = 1 / (1 + mg::lambda_quadrature(f, wi));
       else if (model == "g1_smith_series_n4") out[k] = 1 / (1 + mg::lambda_series(f, theta, 4));
+      else if (model == "g1_smith_series_n6") out[k] = 1 / (1 + mg::lambda_series(f, theta, 6));
       else if (model == "g1_smith_ggx_alpha_tilde") out[k] = 1 / (1 + mg::lambda_ggx_equivalent(f, theta));
       else if (model == "g1_g_dist") {
         // Average of G_dist over the height field's normals, weighted by projected area <i.m>+ D(m).
