@@ -17,11 +17,11 @@
 // vNDF paper Eq. 1 (LRPB24's form): f = tau0 f_S + V_p(i, o) f_B, where
 // tau0 f_S is single scattering on the grains with the height-correlated
 // masking: tau0 / (|i.n||o.n|) ∫ D(m) f_micro(i, o, m) <i.m><o.m> G(i, o, h(m)) dm,
-// here with G(i, o, h) = G_dist(i, h) G_dist(o, h) (the bidirectional G_dist of
-// LRPB24 is not in the papers we have; the product assumes that masking toward
-// i and toward o are independent at a given height), and
-// V_p(i, o) = (1 - tau0) V(i) V(o), V(d) = (1 - tau+(d)) / (1 - tau0), which
-// makes V_p f_B identical to LRPB23's (1 - w+) f^B.
+// with either G(i, o, h) = G_dist(i, h) G_dist(o, h) and
+// V_p(i, o) = (1 - tau0) V(i) V(o), V(d) = (1 - tau+(d)) / (1 - tau0) (TwoWay::Product,
+// which makes V_p f_B identical to LRPB23's (1 - w+) f^B and assumes masking toward
+// i and toward o independent), or the exact Poisson void probabilities over the
+// union of the two shadow sets (TwoWay::Union; two_way_masking.h, pore_visibility.h).
 #include "models/core/vec.h"
 #include "models/micrograin/grain_field.h"
 

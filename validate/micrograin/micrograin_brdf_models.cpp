@@ -108,12 +108,12 @@ std::vector<ModelInfo> model_list() {
        "components)",
        "micrograin", ""},
       {"gdist_base_simvp", "brdf", false,
-       "(1 - tau0) V_p(i, o) f_B (vNDF Eq. 1) with the bidirectional pore visibility V_p measured on an explicit field "
-       "(no closed form): exact for a single event on the base, up to its own Monte Carlo noise (~1 %), which "
-       "enters z",
+       "(1 - tau0) V_p(i, o) f_B (vNDF Eq. 1) with the bidirectional pore visibility V_p measured on an explicit field: "
+       "a cross-check of gdist_base_union's closed form, up to its own Monte Carlo noise (~1 %), which enters z",
        "micrograin", "order1_base"},
       {"gdist_total_simvp", "brdf", false,
-       "tau0 f_S with G_dist + (1 - tau0) V_p(i, o) f_B with V_p measured (vNDF Eq. 1; its noise enters z)",
+       "tau0 f_S with G_dist + (1 - tau0) V_p(i, o) f_B with V_p measured (vNDF Eq. 1; its noise enters z): a "
+       "cross-check of the base term of gdist_total_union",
        "micrograin", "total"},
       {"gdist_albedo_simvp", "albedo", false,
        "directional albedo of vNDF Eq. 1 with G_dist and V_p(i, o) measured (its noise enters z); grain and base "
@@ -137,12 +137,24 @@ std::vector<ModelInfo> model_list() {
   return m;
 }
 
-// f of one model for all channels.
-void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 i, Vec3 o, double out[3]) {
+// f of one model for all channels; sharp_only: the grains' specular lobe alone
+// (the part whose peak a coarse cell rule can miss; issue #15, part 5).
+void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 i, Vec3 o, double out[3],
+            bool sharp_only = false) {
   double geometry = -1;  // the G_dist diffuse geometry is channel-independent: compute once
   for (int k = 0; k < 3; ++k) {
-    const mg::MicroSurface g = channel_of(mat.grain, k), b = channel_of(mat.base, k);
+    mg::MicroSurface g = channel_of(mat.grain, k);
+    const mg::MicroSurface b = channel_of(mat.base, k);
     double v = 0;
+    if (sharp_only) {
+      if (s.part != Spec::Part::Base && g.type != mg::MicroSurface::Type::Lambertian) {
+        g.kd = 0;  // diffuse + specular grains: the specular lobe alone
+        v = s.form == Spec::Form::Lrpb23 ? mg::lrpb23_grain_part(f, g, i, o, s.lambda, s.g2)
+                                         : mg::gdist_grain_single_scattering(f, g, i, o, s.masking);
+      }
+      out[k] = v;
+      continue;
+    }
     if (s.part != Spec::Part::Base) {
       if (s.form == Spec::Form::Lrpb23) {
         v += mg::lrpb23_grain_part(f, g, i, o, s.lambda, s.g2);
@@ -165,29 +177,81 @@ void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& m
   }
 }
 
+// ∫∫ f mu dmu dphi of one model over [mu0, mu1] x [p0, p1] by an n x n product rule.
+void cell_integral(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 wi, double phi_i,
+                   double mu0, double mu1, double p0, double p1, const GaussLegendre& g, bool sharp_only, double out[3]) {
+  out[0] = out[1] = out[2] = 0;
+  const std::size_t n = g.x.size();
+  for (std::size_t u = 0; u < n; ++u)
+    for (std::size_t v = 0; v < n; ++v) {
+      const double mu = 0.5 * (mu0 + mu1) + 0.5 * (mu1 - mu0) * g.x[u];
+      const double phi = 0.5 * (p0 + p1) + 0.5 * (p1 - p0) * g.x[v];
+      const double w = 0.25 * (mu1 - mu0) * (p1 - p0) * g.w[u] * g.w[v] * mu;
+      const Vec3 wo = spherical_direction(std::acos(std::fmin(1.0, mu)), phi_i + phi);
+      double fv[3];
+      eval_f(s, f, mat, wi, wo, fv, sharp_only);
+      for (int k = 0; k < 3; ++k) out[k] += w * fv[k];
+    }
+}
+
+// The sharp part's cell integral, refined by quadrisection until the children
+// agree with their parent to 1e-6 of the cell's integral (at most 10 levels).
+void sharp_cell_integral(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 wi, double phi_i,
+                         double mu0, double mu1, double p0, double p1, const double whole[3], double tol, int depth,
+                         double out[3]) {
+  static const GaussLegendre g(4);
+  const double mm = 0.5 * (mu0 + mu1), pm = 0.5 * (p0 + p1);
+  const double box[4][4] = {{mu0, mm, p0, pm}, {mm, mu1, p0, pm}, {mu0, mm, pm, p1}, {mm, mu1, pm, p1}};
+  double child[4][3], sum[3] = {0, 0, 0};
+  for (int c = 0; c < 4; ++c) {
+    cell_integral(s, f, mat, wi, phi_i, box[c][0], box[c][1], box[c][2], box[c][3], g, true, child[c]);
+    for (int k = 0; k < 3; ++k) sum[k] += child[c][k];
+  }
+  double diff = 0;
+  for (int k = 0; k < 3; ++k) diff = std::fmax(diff, std::fabs(sum[k] - whole[k]));
+  if (depth <= 0 || diff <= tol) {
+    for (int k = 0; k < 3; ++k) out[k] = sum[k];
+    return;
+  }
+  out[0] = out[1] = out[2] = 0;
+  for (int c = 0; c < 4; ++c) {
+    double r[3];
+    sharp_cell_integral(s, f, mat, wi, phi_i, box[c][0], box[c][1], box[c][2], box[c][3], child[c], 0.25 * tol, depth - 1, r);
+    for (int k = 0; k < 3; ++k) out[k] += r[k];
+  }
+}
+
 std::vector<double> evaluate_brdf(const Spec& s, const Table& t, const Experiment& ex, const mg::GrainField& f) {
   std::vector<double> out(t.cells(), NAN);
   const Axis &ti = t.axes[0], &pi = t.axes[1], &to = t.axes[2], &ph = t.axes[3];
   const int n = s.form == Spec::Form::Gdist ? 3 : 6;
   const GaussLegendre g(n);
+  // Grains with a specular lobe: a fixed n x n rule can miss its peak in a
+  // coarse cell (at theta_i = 89 deg it gave 0.04 for 1.20 in a 45 x 180 deg
+  // cell; issue #15, part 5). That lobe alone is then integrated adaptively
+  // and replaces its share of the fixed rule; the smooth rest keeps the n x n rule.
+  const MicroBrdf::Type grain = ex.materials.grain.type;
+  const bool sharp = s.part != Spec::Part::Base &&
+                     (grain == MicroBrdf::Type::Conductor || grain == MicroBrdf::Type::DiffuseSpecular);
   // One task per (theta_i, phi_i, theta_o) row of cells; each writes only its own cells.
   tbb::parallel_for(std::size_t{0}, ti.size() * pi.size() * to.size(), [&](std::size_t row) {
     const std::size_t a = row / (pi.size() * to.size()), b = row / to.size() % pi.size(), c = row % to.size();
     const Vec3 wi = spherical_direction(ti.values[a], pi.values[b]);
     const double mu0 = std::cos(to.upper(c)), mu1 = std::cos(to.lower(c));
     for (std::size_t d = 0; d < ph.size(); ++d) {
-      double num[3] = {0, 0, 0}, den = 0;
-      for (int u = 0; u < n; ++u)
-        for (int v = 0; v < n; ++v) {
-          const double mu = 0.5 * (mu0 + mu1) + 0.5 * (mu1 - mu0) * g.x[u];
-          const double phi = 0.5 * (ph.lower(d) + ph.upper(d)) + 0.5 * (ph.upper(d) - ph.lower(d)) * g.x[v];
-          const double w = g.w[u] * g.w[v] * mu;
-          const Vec3 wo = spherical_direction(std::acos(std::fmin(1.0, mu)), pi.values[b] + phi);
-          double fv[3];
-          eval_f(s, f, ex.materials, wi, wo, fv);
-          for (int k = 0; k < 3; ++k) num[k] += w * fv[k];
-          den += w;
-        }
+      const double p0 = ph.lower(d), p1 = ph.upper(d);
+      const double den = 0.5 * (mu1 * mu1 - mu0 * mu0) * (p1 - p0);  // ∫∫ mu dmu dphi
+      double num[3];
+      cell_integral(s, f, ex.materials, wi, pi.values[b], mu0, mu1, p0, p1, g, false, num);
+      if (sharp) {
+        double coarse[3], start[3], fine[3];
+        cell_integral(s, f, ex.materials, wi, pi.values[b], mu0, mu1, p0, p1, g, true, coarse);
+        static const GaussLegendre g4(4);
+        cell_integral(s, f, ex.materials, wi, pi.values[b], mu0, mu1, p0, p1, g4, true, start);
+        const double scale = std::fmax(std::fabs(num[0]), std::fmax(std::fabs(num[1]), std::fabs(num[2])));
+        sharp_cell_integral(s, f, ex.materials, wi, pi.values[b], mu0, mu1, p0, p1, start, 1e-6 * scale + 1e-300, 10, fine);
+        for (int k = 0; k < 3; ++k) num[k] += fine[k] - coarse[k];
+      }
       for (std::size_t k = 0; k < 3; ++k) out[t.index({a, b, c, d, k})] = num[k] / den;
     }
   });
