@@ -195,7 +195,8 @@ void cell_integral(const Spec& s, const mg::GrainField& f, const MicrograinMater
 }
 
 // The sharp part's cell integral, refined by quadrisection until the children
-// agree with their parent to 1e-6 of the cell's integral (at most 10 levels).
+// agree with their parent to tol (halved per level, at most `depth` levels; the
+// caller asks 1e-5 of the cell's integral, far below the simulation's error bars).
 void sharp_cell_integral(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 wi, double phi_i,
                          double mu0, double mu1, double p0, double p1, const double whole[3], double tol, int depth,
                          double out[3]) {
@@ -216,7 +217,7 @@ void sharp_cell_integral(const Spec& s, const mg::GrainField& f, const Micrograi
   out[0] = out[1] = out[2] = 0;
   for (int c = 0; c < 4; ++c) {
     double r[3];
-    sharp_cell_integral(s, f, mat, wi, phi_i, box[c][0], box[c][1], box[c][2], box[c][3], child[c], 0.25 * tol, depth - 1, r);
+    sharp_cell_integral(s, f, mat, wi, phi_i, box[c][0], box[c][1], box[c][2], box[c][3], child[c], 0.5 * tol, depth - 1, r);
     for (int k = 0; k < 3; ++k) out[k] += r[k];
   }
 }
@@ -249,7 +250,7 @@ std::vector<double> evaluate_brdf(const Spec& s, const Table& t, const Experimen
         static const GaussLegendre g4(4);
         cell_integral(s, f, ex.materials, wi, pi.values[b], mu0, mu1, p0, p1, g4, true, start);
         const double scale = std::fmax(std::fabs(num[0]), std::fmax(std::fabs(num[1]), std::fabs(num[2])));
-        sharp_cell_integral(s, f, ex.materials, wi, pi.values[b], mu0, mu1, p0, p1, start, 1e-6 * scale + 1e-300, 10, fine);
+        sharp_cell_integral(s, f, ex.materials, wi, pi.values[b], mu0, mu1, p0, p1, start, 1e-5 * scale + 1e-300, 7, fine);
         for (int k = 0; k < 3; ++k) num[k] += fine[k] - coarse[k];
       }
       for (std::size_t k = 0; k < 3; ++k) out[t.index({a, b, c, d, k})] = num[k] / den;
