@@ -302,7 +302,8 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
           if (!m.component.empty() && (t.attributes.count("component") == 0 || t.attributes.at("component") != m.component))
             continue;
           if (!(ex.kind == "micrograin" && ex.micrograin.anisotropic() &&
-                (m.name == "ndf_ggx_alpha_tilde" || m.name == "g1_smith_series_n4" || m.name == "g1_smith_ggx_alpha_tilde")))
+                (m.name == "ndf_ggx_alpha_tilde" || m.name == "g1_smith_series_n4" || m.name == "g1_smith_series_n6" ||
+                 m.name == "g1_smith_ggx_alpha_tilde")))
             checks.push_back({t.name, m.name, 0.0});
         }
     for (const Check& chk : checks)

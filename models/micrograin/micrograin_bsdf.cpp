@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <vector>
 
 #include "models/core/quadrature.h"
@@ -9,7 +10,9 @@
 #include "models/micrograin/ggx.h"
 #include "models/micrograin/height_masking.h"
 #include "models/micrograin/ndf.h"
+#include "models/micrograin/pore_visibility.h"
 #include "models/micrograin/smith_lambda.h"
+#include "models/micrograin/two_way_masking.h"
 #include "models/micrograin/unit_space.h"
 #include "models/micrograin/visible_filling_factor.h"
 
@@ -77,20 +80,22 @@ double flat_delta_energy(const MicroSurface& s, double c) {
                                                                                                    : 0.0;
 }
 
-double lrpb23_surface(const GrainField& f, const MicroSurface& g, Vec3 i, Vec3 o, LambdaMethod method) {
+double lrpb23_surface(const GrainField& f, const MicroSurface& g, Vec3 i, Vec3 o, LambdaMethod method, SmithG2 g2) {
   double value = 0;
   if (g.type == MicroSurface::Type::Lambertian) value += g.kd / kPi;  // T = 1
   if (g.type == MicroSurface::Type::DiffuseSpecular) value += body_term(g, i.z, o.z);
   if (g.type == MicroSurface::Type::Conductor || g.type == MicroSurface::Type::DiffuseSpecular) {
     const Vec3 h = half_vector(i, o);
-    const double G = 1 / (1 + lambda_of(f, i, method) + lambda_of(f, o, method));  // Heitz 2014 Eq. 99
+    const double li = lambda_of(f, i, method), lo = lambda_of(f, o, method);
+    const double G = g2 == SmithG2::Separable ? 1 / ((1 + li) * (1 + lo))  // Heitz 2014 Eq. 98
+                                              : 1 / (1 + li + lo);         // Heitz 2014 Eq. 99
     value += ndf(f, h) * G * specular_fresnel(g, dot(i, h)) / (4 * i.z * o.z);      // Eq. 2
   }
   return value;
 }
 
-double lrpb23_grain_part(const GrainField& f, const MicroSurface& g, Vec3 i, Vec3 o, LambdaMethod method) {
-  return layer_weight(f, i, o) * lrpb23_surface(f, g, i, o, method);  // Eq. 1, 24
+double lrpb23_grain_part(const GrainField& f, const MicroSurface& g, Vec3 i, Vec3 o, LambdaMethod method, SmithG2 g2) {
+  return layer_weight(f, i, o) * lrpb23_surface(f, g, i, o, method, g2);  // Eq. 1, 24
 }
 
 double lrpb23_base_part(const GrainField& f, const MicroSurface& base, Vec3 i, Vec3 o) {
@@ -102,58 +107,88 @@ double lrpb23_base_delta_energy(const GrainField& f, const MicroSurface& base, V
   return (1 - layer_weight(f, i, mirror)) * flat_delta_energy(base, i.z);
 }
 
-double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior) {
-  // Unit-space polar angle of the normal: theta'; split where the shadows of
-  // i and o start (h = sin theta_d', i.e. theta' = pi/2 - theta_d').
-  const double ti = spherical_theta(to_unit_direction(f, i)), to = spherical_theta(to_unit_direction(f, o));
-  std::vector<double> cuts{0.0, kPi / 2 - std::max(ti, to), kPi / 2 - std::min(ti, to), kPi / 2};
-  static const GaussLegendre rule(16);
-  constexpr int nphi = 128;
-  // cos and sin of the ring's azimuths 2 pi (p + 1/2) / nphi.
-  static const std::vector<Vec3> ring_azimuths = [] {
-    std::vector<Vec3> v(nphi);
-    for (int p = 0; p < nphi; ++p) v[p] = {std::cos(2 * kPi * (p + 0.5) / nphi), std::sin(2 * kPi * (p + 0.5) / nphi), 0};
-    return v;
-  }();
-  const bool fresnel = ior > 1;
-  double sum = 0;
-  for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
-    const double a = cuts[c], b = cuts[c + 1];
-    if (b - a <= 1e-12) continue;
-    for (std::size_t k = 0; k < rule.x.size(); ++k) {
-      const double th = 0.5 * (a + b) + 0.5 * (b - a) * rule.x[k];
-      const double h = std::cos(th), st = std::sin(th);
-      const double gi = distant_masking(f, i, h), go = distant_masking(f, o, h);
-      // D(m) dw_m = D1(h) |M m'| dw_m' (vNDF Eq. 7 with the Jacobian of the
-      // unit-space map m = M m' / |M m'|): D1 is constant on the ring.
-      const double d1 = unit_ndf(f.tau0, h);
-      double ring = 0;
-      for (const Vec3& az : ring_azimuths) {
-        const Vec3 mm{st * az.x * f.beta_x, st * az.y * f.beta_y, h};  // M m'
-        const double len = std::sqrt(dot(mm, mm));
-        const Vec3 m = mm * (1 / len);
-        const double im = dot(i, m), om = dot(o, m);
-        if (im <= 0 || om <= 0) continue;
-        double t = 1;
-        if (fresnel) t = (1 - fresnel_dielectric(im, ior)) * (1 - fresnel_dielectric(om, ior));
-        ring += len * im * om * t;
-      }
-      sum += 0.5 * (b - a) * rule.w[k] * st * d1 * ring * (2 * kPi / nphi) * gi * go;
-    }
-  }
-  const double tau0 = f.tau0;
-  return tau0 * sum / (kPi * i.z * o.z);
+double gdist_base_part(const GrainField& f, const MicroSurface& base, Vec3 i, Vec3 o, TwoWay masking) {
+  if (masking == TwoWay::Product) return lrpb23_base_part(f, base, i, o);
+  return base_visibility_union(f, i, o) * flat_brdf(base, i, o);  // vNDF Eq. 1
 }
 
-double gdist_grain_single_scattering(const GrainField& f, const MicroSurface& g, Vec3 i, Vec3 o) {
+double gdist_base_delta_energy(const GrainField& f, const MicroSurface& base, Vec3 i, TwoWay masking) {
+  if (masking == TwoWay::Product) return lrpb23_base_delta_energy(f, base, i);
+  const Vec3 mirror{-i.x, -i.y, i.z};
+  return base_visibility_union(f, i, mirror) * flat_delta_energy(base, i.z);
+}
+
+double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior, TwoWay masking) {
+  // Both integrals are split at their kinks and refined adaptively to about
+  // 1e-8 relative (issue #15, part 4): first a fixed 16-point rule per piece
+  // sets the scale, then integrate_adaptive meets kRel of it.
+  constexpr double kRel = 1e-8;
+  static const GaussLegendre rule(16);
+  const bool fresnel = ior > 1;
+  // Ring integrand at azimuth a: <i.m>+ <o.m>+ T |M m'|, with |M m'| <d.m> = A + B cos a + C sin a
+  // (M m' = (st beta_x cos a, st beta_y sin a, h)); split the ring where either sinusoid vanishes.
+  auto ring_integral = [&](double h, double st) {
+    std::vector<double> cuts_a{0.0, 2 * kPi};
+    auto add_zeros = [&](Vec3 d) {
+      const double A = h * d.z, B = st * f.beta_x * d.x, C = st * f.beta_y * d.y, R = std::hypot(B, C);
+      if (R <= std::fabs(A)) return;  // the whole ring faces d, or none of it
+      const double a0 = std::atan2(C, B), w = std::acos(-A / R);
+      for (double z : {a0 - w, a0 + w}) cuts_a.push_back(std::fmod(std::fmod(z, 2 * kPi) + 2 * kPi, 2 * kPi));
+    };
+    add_zeros(i);
+    add_zeros(o);
+    std::sort(cuts_a.begin(), cuts_a.end());
+    auto integrand = [&](double a) {
+      const double ca = std::cos(a), sa = std::sin(a);
+      const Vec3 mm{st * ca * f.beta_x, st * sa * f.beta_y, h};  // M m'
+      const double len = std::sqrt(dot(mm, mm));
+      const double im = dot(i, mm) / len, om = dot(o, mm) / len;
+      if (im <= 0 || om <= 0) return 0.0;
+      double t = 1;
+      if (fresnel) t = (1 - fresnel_dielectric(im, ior)) * (1 - fresnel_dielectric(om, ior));
+      return len * im * om * t;
+    };
+    double coarse = 0;
+    for (std::size_t c = 0; c + 1 < cuts_a.size(); ++c)
+      if (cuts_a[c + 1] - cuts_a[c] > 1e-14) coarse += std::fabs(rule.integrate(integrand, cuts_a[c], cuts_a[c + 1]));
+    double ring = 0;
+    for (std::size_t c = 0; c + 1 < cuts_a.size(); ++c)
+      if (cuts_a[c + 1] - cuts_a[c] > 1e-14)
+        ring += integrate_adaptive(integrand, cuts_a[c], cuts_a[c + 1], kRel * coarse / cuts_a.size() + 1e-300);
+    return ring;
+  };
+  // Unit-space polar angle theta' of the normal: split where the ring of either
+  // direction starts to turn away (theta' = pi/2 - theta'_d), which is also where
+  // its distant shadow starts (h = sin theta'_d).
+  auto polar = [&](double th) {
+    const double h = std::cos(th), st = std::sin(th);
+    const double g2 = masking == TwoWay::Union ? distant_masking_union(f, i, o, h)
+                                               : distant_masking(f, i, h) * distant_masking(f, o, h);
+    // D(m) dw_m = D1(h) |M m'| dw_m' (vNDF Eq. 7 with the Jacobian of the
+    // unit-space map m = M m' / |M m'|): D1 is constant on the ring.
+    return st * unit_ndf(f.tau0, h) * ring_integral(h, st) * g2;
+  };
+  const double ti = spherical_theta(to_unit_direction(f, i)), to = spherical_theta(to_unit_direction(f, o));
+  const std::vector<double> cuts{0.0, kPi / 2 - std::max(ti, to), kPi / 2 - std::min(ti, to), kPi / 2};
+  double coarse = 0;
+  for (std::size_t c = 0; c + 1 < cuts.size(); ++c)
+    if (cuts[c + 1] - cuts[c] > 1e-12) coarse += std::fabs(rule.integrate(polar, cuts[c], cuts[c + 1]));
+  double sum = 0;
+  for (std::size_t c = 0; c + 1 < cuts.size(); ++c)
+    if (cuts[c + 1] - cuts[c] > 1e-12) sum += integrate_adaptive(polar, cuts[c], cuts[c + 1], kRel * coarse / 3 + 1e-300);
+  return f.tau0 * sum / (kPi * i.z * o.z);
+}
+
+double gdist_grain_single_scattering(const GrainField& f, const MicroSurface& g, Vec3 i, Vec3 o, TwoWay masking) {
   double value = 0;
-  if (g.type == MicroSurface::Type::Lambertian) value += g.kd * gdist_diffuse_geometry(f, i, o, 0.0);
+  if (g.type == MicroSurface::Type::Lambertian) value += g.kd * gdist_diffuse_geometry(f, i, o, 0.0, masking);
   if (g.type == MicroSurface::Type::DiffuseSpecular)
-    value += body_factor(g) * gdist_diffuse_geometry(f, i, o, g.ior);
+    value += body_factor(g) * gdist_diffuse_geometry(f, i, o, g.ior, masking);
   if (g.type == MicroSurface::Type::Conductor || g.type == MicroSurface::Type::DiffuseSpecular) {
     const Vec3 h = half_vector(i, o);
     const double height = unit_height(f, h);
-    const double G = distant_masking(f, i, height) * distant_masking(f, o, height);
+    const double G = masking == TwoWay::Union ? distant_masking_union(f, i, o, height)
+                                              : distant_masking(f, i, height) * distant_masking(f, o, height);
     value += f.tau0 * ndf(f, h) * G * specular_fresnel(g, dot(i, h)) / (4 * i.z * o.z);
   }
   return value;

@@ -43,24 +43,31 @@ double negative_part_integral(double beta, double theta, Weight&& weight) {
 }  // namespace
 
 double lambda_series_term(double tau0, double beta, double theta, int k) {
+  // F_k = (pi gamma)^{k+1} / (2 (k+1)!) (S_k(x) / (1 + x)^{k - 1/2} - 1), x = beta^2 / mu^2,
+  // S_k the binomial series of (1 + x)^{k - 1/2} cut after x^k (the closed forms of
+  // papers/README.md for k <= 4, written for any k). The bracket is minus the series'
+  // tail over (1 + x)^{k - 1/2}; for x < 1/2 the tail is summed directly (no cancellation).
   const double pg = -std::log1p(-tau0);
   const double mu = std::cos(theta) / std::sin(theta);
-  const double b2 = beta * beta, b4 = b2 * b2, b6 = b4 * b2, b8 = b4 * b4;
-  const double m2 = mu * mu, m4 = m2 * m2, m6 = m4 * m2, m8 = m4 * m4;
-  const double R = std::sqrt(b2 + mu * mu), R3 = R * R * R, R5 = R3 * R * R, R7 = R5 * R * R;
-  switch (k) {
-    case 0: return pg * (R - mu) / (2 * mu);
-    case 1: return std::pow(pg, 2) * (b2 + 2 * mu * (mu - R)) / (8 * mu * R);
-    case 2: return std::pow(pg, 3) * (3 * b4 + 12 * b2 * m2 + 8 * m4 - 8 * mu * R3) / (96 * mu * R3);
-    case 3:
-      return std::pow(pg, 4) * (5 * b6 + 30 * b4 * m2 + 40 * b2 * m4 + 16 * m6 - 16 * mu * R5) /
-             (768 * mu * R5);
-    case 4:
-      return std::pow(pg, 5) *
-             (35 * b8 + 280 * b6 * m2 + 560 * b4 * m4 + 448 * b2 * m6 + 128 * m8 - 128 * mu * R7) /
-             (30720 * mu * R7);
-    default: return lambda_series_term_quadrature(tau0, beta, theta, k);
+  const double x = beta * beta / (mu * mu), a = k - 0.5;
+  const double scale = 0.5 * std::exp((k + 1) * std::log(pg) - std::lgamma(k + 2.0));
+  double c = 1, xj = 1, head = 1;  // C(a, j), x^j, S_j
+  for (int j = 1; j <= k; ++j) {
+    c *= (a - j + 1) / j;
+    xj *= x;
+    head += c * xj;
   }
+  const double power = std::pow(1 + x, a);
+  if (x >= 0.5) return scale * (head / power - 1);
+  double tail = 0;
+  for (int j = k + 1; j < 10000; ++j) {
+    c *= (a - j + 1) / j;
+    xj *= x;
+    const double t = c * xj;
+    tail += t;
+    if (std::fabs(t) <= 1e-17 * std::fabs(tail)) break;
+  }
+  return -scale * tail / power;
 }
 
 double lambda_series_term_quadrature(double tau0, double beta, double theta, int k) {

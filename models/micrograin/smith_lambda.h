@@ -9,7 +9,9 @@
 //      s = tan^2 theta_m / (beta^2 + tan^2 theta_m) (so 1 - s = cos^2 of the
 //      unit-space angle); this follows from expanding (1 - tau0)^s =
 //      e^{-pi gamma} e^{pi gamma (1 - s)} in Eq. 17. Closed forms for k <= 4
-//      (README), quadrature for any k;
+//      (README) and their pattern for any k (F_k = (pi gamma)^{k+1} / (2 (k+1)!) *
+//      (S_k(x) / (1 + x)^{k - 1/2} - 1), x = beta^2 / mu^2, S_k the binomial
+//      series of (1 + x)^{k - 1/2} cut after x^k; issue #15), quadrature for any k;
 //  (b) quadrature of the Smith integral 1 + Lambda = ∫ <w.m>^+ D(m) dm / cos theta
 //      with the exact D of Eq. 17, evaluated as Lambda = ∫ <w.m>^- D dm / cos theta
 //      (equal because ∫ (w.m) D dm = cos theta for a normalised, azimuthally
@@ -28,15 +30,13 @@
 
 namespace mcref::micrograin {
 
-// F_k in closed form (papers/README.md) for k = 0..4; larger k fall back to
-// lambda_series_term_quadrature.
+// F_k in closed form for any k >= 0 (papers/README.md gives k = 0..4).
 double lambda_series_term(double tau0, double beta, double theta, int k);
 
 // F_k by quadrature of its defining integral, any k >= 0.
 double lambda_series_term_quadrature(double tau0, double beta, double theta, int k);
 
-// (a) Eq. 25 truncated after F_n (n + 1 terms): closed forms for k <= 4,
-// quadrature for k > 4.
+// (a) Eq. 25 truncated after F_n (n + 1 terms), closed-form terms.
 double lambda_series(const GrainField& f, double theta, int n);
 
 // (b) Smith integral with the exact NDF (isotropic, beta = f.beta_x).

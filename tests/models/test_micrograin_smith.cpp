@@ -33,7 +33,7 @@ double lambda_brute_force(double tau0, double beta, double theta) {
 }
 }  // namespace
 
-// README check: F0..F4 agree with the quadrature of their defining integrals to
+// README check: F0..F8 (the general closed form; issue #15) agree with the quadrature of their defining integrals to
 // 1e-6 at tau0 = 0.5, beta = 0.8, theta <= 60° (they in fact agree to ~1e-13
 // at every angle; checked up to 89°).
 TEST(MicrograinSmith, ClosedFormTermsMatchQuadrature) {
@@ -45,7 +45,7 @@ TEST(MicrograinSmith, ClosedFormTermsMatchQuadrature) {
   for (double tau0 : {0.2, 0.98})
     for (double beta : {0.3, 1.0, 1.8})
       for (double th_deg : {10.0, 45.0, 75.0, 89.0})
-        for (int k = 0; k <= 4; ++k) {
+        for (int k = 0; k <= 8; ++k) {
           const double th = deg_to_rad(th_deg);
           const double q = lambda_series_term_quadrature(tau0, beta, th, k);
           EXPECT_NEAR(lambda_series_term(tau0, beta, th, k), q, 1e-11 * std::fmax(1.0, q))
@@ -66,6 +66,18 @@ TEST(MicrograinSmith, ReadmeNumbers) {
     const double t = deg_to_rad(th_deg);
     EXPECT_NEAR(lambda_series(f, t, 4), lambda_quadrature(f, t), 1e-6) << th_deg;
   }
+}
+
+// Issue #15's figures: tau0 = 0.98, beta = 2, theta = 89°: Eq. 25 cut after F4
+// gives 19.03, after F6 21.12, the quadrature 21.64. Each added term is
+// positive (the series increases toward the quadrature).
+TEST(MicrograinSmith, TruncationAtSixTermsIssue15) {
+  const GrainField f{0.98, 2.0, 2.0};
+  const double th = deg_to_rad(89);
+  EXPECT_NEAR(lambda_series(f, th, 4), 19.03, 5e-3);
+  EXPECT_NEAR(lambda_series(f, th, 6), 21.12, 5e-3);
+  EXPECT_NEAR(lambda_quadrature(f, th), 21.64, 5e-3);
+  for (int n = 1; n <= 12; ++n) EXPECT_GT(lambda_series(f, th, n), lambda_series(f, th, n - 1));
 }
 
 // The series converges to the Smith integral (n = 40 terms).

@@ -44,6 +44,8 @@ struct Spec {
   enum class Form { Lrpb23, Gdist } form;
   mg::LambdaMethod lambda = mg::LambdaMethod::Quadrature;
   bool simulated_vp = false;  // base term with V_p(i, o) measured (validate/micrograin/simulated_pore_base.h)
+  mg::TwoWay masking = mg::TwoWay::Product;  // two-direction masking of the Gdist form (issue #15)
+  mg::SmithG2 g2 = mg::SmithG2::HeightCorrelated;  // reading of LRPB23 Eq. 2's G (issue #15)
 };
 
 const std::map<std::string, Spec>& specs() {
@@ -57,6 +59,9 @@ const std::map<std::string, Spec>& specs() {
       {"lrpb23_grain_series4", {P::Grain, F::Lrpb23, L::Series4}},
       {"lrpb23_grain_quadrature", {P::Grain, F::Lrpb23, L::Quadrature}},
       {"lrpb23_grain_ggx", {P::Grain, F::Lrpb23, L::GgxEquivalent}},
+      {"lrpb23_separable", {P::Total, F::Lrpb23, L::Quadrature, false, mg::TwoWay::Product, mg::SmithG2::Separable}},
+      {"lrpb23_grain_separable",
+       {P::Grain, F::Lrpb23, L::Quadrature, false, mg::TwoWay::Product, mg::SmithG2::Separable}},
       {"lrpb23_base", {P::Base, F::Lrpb23}},
       {"gdist_grain", {P::Grain, F::Gdist}},
       {"gdist_total", {P::Total, F::Gdist}},
@@ -65,6 +70,10 @@ const std::map<std::string, Spec>& specs() {
       {"gdist_base_simvp", {P::Base, F::Gdist, L::Quadrature, true}},
       {"gdist_total_simvp", {P::Total, F::Gdist, L::Quadrature, true}},
       {"gdist_albedo_simvp", {P::Total, F::Gdist, L::Quadrature, true}},
+      {"gdist_base_union", {P::Base, F::Gdist, L::Quadrature, false, mg::TwoWay::Union}},
+      {"gdist_grain_union", {P::Grain, F::Gdist, L::Quadrature, false, mg::TwoWay::Union}},
+      {"gdist_total_union", {P::Total, F::Gdist, L::Quadrature, false, mg::TwoWay::Union}},
+      {"gdist_albedo_union", {P::Total, F::Gdist, L::Quadrature, false, mg::TwoWay::Union}},
   };
   return s;
 }
@@ -77,6 +86,12 @@ std::vector<ModelInfo> model_list() {
       {"lrpb23_grain_series4", "brdf", false, "LRPB23 w+ f^S (Eq. 1-2, 24), Lambda series n = 4", "micrograin", "order1_grain"},
       {"lrpb23_grain_quadrature", "brdf", false, "LRPB23 w+ f^S, Lambda by quadrature", "micrograin", "order1_grain"},
       {"lrpb23_grain_ggx", "brdf", false, "LRPB23 w+ f^S, Lambda of GGX at alpha~", "micrograin", "order1_grain"},
+      {"lrpb23_separable", "brdf", false,
+       "LRPB23 Eq. 1-2 read with the separable G = G1(i) G1(o) (Heitz 2014 Eq. 98), Lambda by quadrature", "micrograin",
+       "total"},
+      {"lrpb23_grain_separable", "brdf", false,
+       "LRPB23 w+ f^S with the separable G = G1(i) G1(o), Lambda by quadrature (the other reading of Eq. 2; issue #15)",
+       "micrograin", "order1_grain"},
       {"lrpb23_base", "brdf", false,
        "(1 - w+) f^B (LRPB23 Eq. 1, 24) = (1 - tau0) V(i) V(o) f_B (vNDF Eq. 1, independent pore visibilities)", "micrograin",
        "order1_base"},
@@ -93,46 +108,117 @@ std::vector<ModelInfo> model_list() {
        "components)",
        "micrograin", ""},
       {"gdist_base_simvp", "brdf", false,
-       "(1 - tau0) V_p(i, o) f_B (vNDF Eq. 1) with the bidirectional pore visibility V_p measured on an explicit field "
-       "(no closed form): exact for a single event on the base, up to its own Monte Carlo noise (~1 %), which "
-       "enters z",
+       "(1 - tau0) V_p(i, o) f_B (vNDF Eq. 1) with the bidirectional pore visibility V_p measured on an explicit field: "
+       "a cross-check of gdist_base_union's closed form, up to its own Monte Carlo noise (~1 %), which enters z",
        "micrograin", "order1_base"},
       {"gdist_total_simvp", "brdf", false,
-       "tau0 f_S with G_dist + (1 - tau0) V_p(i, o) f_B with V_p measured (vNDF Eq. 1; its noise enters z)",
+       "tau0 f_S with G_dist + (1 - tau0) V_p(i, o) f_B with V_p measured (vNDF Eq. 1; its noise enters z): a "
+       "cross-check of the base term of gdist_total_union",
        "micrograin", "total"},
       {"gdist_albedo_simvp", "albedo", false,
        "directional albedo of vNDF Eq. 1 with G_dist and V_p(i, o) measured (its noise enters z); grain and base "
        "parts in the order-1 components",
        "micrograin", ""},
+      {"gdist_base_union", "brdf", true,
+       "(1 - tau0) V_p(i, o) f_B (vNDF Eq. 1) with V_p = exp(-rho (|K_i U K_o| - pi)) in closed form: exact for a "
+       "single event on the base (issue #15)",
+       "micrograin", "order1_base"},
+      {"gdist_grain_union", "brdf", true,
+       "tau0 f_S (vNDF Eq. 1) with the two-direction masking G_dist(i, o, h) = exp(-rho (|K_i(h) U K_o(h)| - "
+       "sigma(n, h))): exact for a single event on a grain (issue #15)",
+       "micrograin", "order1_grain"},
+      {"gdist_total_union", "brdf", false, "tau0 f_S + V_p f_B (vNDF Eq. 1), both with the union masking (single scattering)",
+       "micrograin", "total"},
+      {"gdist_albedo_union", "albedo", false,
+       "directional albedo of vNDF Eq. 1 with the union masking, delta lobe included, and of its grain and base parts "
+       "(order-1 components)",
+       "micrograin", ""},
   };
   return m;
 }
 
-// f of one model for all channels.
-void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 i, Vec3 o, double out[3]) {
+// f of one model for all channels; sharp_only: the grains' specular lobe alone
+// (the part whose peak a coarse cell rule can miss; issue #15, part 5).
+void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 i, Vec3 o, double out[3],
+            bool sharp_only = false) {
   double geometry = -1;  // the G_dist diffuse geometry is channel-independent: compute once
   for (int k = 0; k < 3; ++k) {
-    const mg::MicroSurface g = channel_of(mat.grain, k), b = channel_of(mat.base, k);
+    mg::MicroSurface g = channel_of(mat.grain, k);
+    const mg::MicroSurface b = channel_of(mat.base, k);
     double v = 0;
+    if (sharp_only) {
+      if (s.part != Spec::Part::Base && g.type != mg::MicroSurface::Type::Lambertian) {
+        g.kd = 0;  // diffuse + specular grains: the specular lobe alone
+        v = s.form == Spec::Form::Lrpb23 ? mg::lrpb23_grain_part(f, g, i, o, s.lambda, s.g2)
+                                         : mg::gdist_grain_single_scattering(f, g, i, o, s.masking);
+      }
+      out[k] = v;
+      continue;
+    }
     if (s.part != Spec::Part::Base) {
       if (s.form == Spec::Form::Lrpb23) {
-        v += mg::lrpb23_grain_part(f, g, i, o, s.lambda);
+        v += mg::lrpb23_grain_part(f, g, i, o, s.lambda, s.g2);
       } else if (g.type == mg::MicroSurface::Type::Lambertian || g.type == mg::MicroSurface::Type::DiffuseSpecular) {
         const bool lambert = g.type == mg::MicroSurface::Type::Lambertian;
-        if (geometry < 0) geometry = mg::gdist_diffuse_geometry(f, i, o, lambert ? 0.0 : g.ior);
+        if (geometry < 0) geometry = mg::gdist_diffuse_geometry(f, i, o, lambert ? 0.0 : g.ior, s.masking);
         if (lambert) {
           v += g.kd * geometry;
         } else {
           mg::MicroSurface specular_only = g;
           specular_only.kd = 0;  // its diffuse term vanishes: the specular lobe alone
-          v += mg::body_factor(g) * geometry + mg::gdist_grain_single_scattering(f, specular_only, i, o);
+          v += mg::body_factor(g) * geometry + mg::gdist_grain_single_scattering(f, specular_only, i, o, s.masking);
         }
       } else {
-        v += mg::gdist_grain_single_scattering(f, g, i, o);
+        v += mg::gdist_grain_single_scattering(f, g, i, o, s.masking);
       }
     }
-    if (s.part != Spec::Part::Grain) v += mg::lrpb23_base_part(f, b, i, o);
+    if (s.part != Spec::Part::Grain) v += mg::gdist_base_part(f, b, i, o, s.masking);
     out[k] = v;
+  }
+}
+
+// ∫∫ f mu dmu dphi of one model over [mu0, mu1] x [p0, p1] by an n x n product rule.
+void cell_integral(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 wi, double phi_i,
+                   double mu0, double mu1, double p0, double p1, const GaussLegendre& g, bool sharp_only, double out[3]) {
+  out[0] = out[1] = out[2] = 0;
+  const std::size_t n = g.x.size();
+  for (std::size_t u = 0; u < n; ++u)
+    for (std::size_t v = 0; v < n; ++v) {
+      const double mu = 0.5 * (mu0 + mu1) + 0.5 * (mu1 - mu0) * g.x[u];
+      const double phi = 0.5 * (p0 + p1) + 0.5 * (p1 - p0) * g.x[v];
+      const double w = 0.25 * (mu1 - mu0) * (p1 - p0) * g.w[u] * g.w[v] * mu;
+      const Vec3 wo = spherical_direction(std::acos(std::fmin(1.0, mu)), phi_i + phi);
+      double fv[3];
+      eval_f(s, f, mat, wi, wo, fv, sharp_only);
+      for (int k = 0; k < 3; ++k) out[k] += w * fv[k];
+    }
+}
+
+// The sharp part's cell integral, refined by quadrisection until the children
+// agree with their parent to tol (halved per level, at most `depth` levels; the
+// caller asks 1e-5 of the cell's integral, far below the simulation's error bars).
+void sharp_cell_integral(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 wi, double phi_i,
+                         double mu0, double mu1, double p0, double p1, const double whole[3], double tol, int depth,
+                         double out[3]) {
+  static const GaussLegendre g(4);
+  const double mm = 0.5 * (mu0 + mu1), pm = 0.5 * (p0 + p1);
+  const double box[4][4] = {{mu0, mm, p0, pm}, {mm, mu1, p0, pm}, {mu0, mm, pm, p1}, {mm, mu1, pm, p1}};
+  double child[4][3], sum[3] = {0, 0, 0};
+  for (int c = 0; c < 4; ++c) {
+    cell_integral(s, f, mat, wi, phi_i, box[c][0], box[c][1], box[c][2], box[c][3], g, true, child[c]);
+    for (int k = 0; k < 3; ++k) sum[k] += child[c][k];
+  }
+  double diff = 0;
+  for (int k = 0; k < 3; ++k) diff = std::fmax(diff, std::fabs(sum[k] - whole[k]));
+  if (depth <= 0 || diff <= tol) {
+    for (int k = 0; k < 3; ++k) out[k] = sum[k];
+    return;
+  }
+  out[0] = out[1] = out[2] = 0;
+  for (int c = 0; c < 4; ++c) {
+    double r[3];
+    sharp_cell_integral(s, f, mat, wi, phi_i, box[c][0], box[c][1], box[c][2], box[c][3], child[c], 0.5 * tol, depth - 1, r);
+    for (int k = 0; k < 3; ++k) out[k] += r[k];
   }
 }
 
@@ -141,24 +227,32 @@ std::vector<double> evaluate_brdf(const Spec& s, const Table& t, const Experimen
   const Axis &ti = t.axes[0], &pi = t.axes[1], &to = t.axes[2], &ph = t.axes[3];
   const int n = s.form == Spec::Form::Gdist ? 3 : 6;
   const GaussLegendre g(n);
+  // Grains with a specular lobe: a fixed n x n rule can miss its peak in a
+  // coarse cell (at theta_i = 89 deg it gave 0.04 for 1.20 in a 45 x 180 deg
+  // cell; issue #15, part 5). That lobe alone is then integrated adaptively
+  // and replaces its share of the fixed rule; the smooth rest keeps the n x n rule.
+  const MicroBrdf::Type grain = ex.materials.grain.type;
+  const bool sharp = s.part != Spec::Part::Base &&
+                     (grain == MicroBrdf::Type::Conductor || grain == MicroBrdf::Type::DiffuseSpecular);
   // One task per (theta_i, phi_i, theta_o) row of cells; each writes only its own cells.
   tbb::parallel_for(std::size_t{0}, ti.size() * pi.size() * to.size(), [&](std::size_t row) {
     const std::size_t a = row / (pi.size() * to.size()), b = row / to.size() % pi.size(), c = row % to.size();
     const Vec3 wi = spherical_direction(ti.values[a], pi.values[b]);
     const double mu0 = std::cos(to.upper(c)), mu1 = std::cos(to.lower(c));
     for (std::size_t d = 0; d < ph.size(); ++d) {
-      double num[3] = {0, 0, 0}, den = 0;
-      for (int u = 0; u < n; ++u)
-        for (int v = 0; v < n; ++v) {
-          const double mu = 0.5 * (mu0 + mu1) + 0.5 * (mu1 - mu0) * g.x[u];
-          const double phi = 0.5 * (ph.lower(d) + ph.upper(d)) + 0.5 * (ph.upper(d) - ph.lower(d)) * g.x[v];
-          const double w = g.w[u] * g.w[v] * mu;
-          const Vec3 wo = spherical_direction(std::acos(std::fmin(1.0, mu)), pi.values[b] + phi);
-          double fv[3];
-          eval_f(s, f, ex.materials, wi, wo, fv);
-          for (int k = 0; k < 3; ++k) num[k] += w * fv[k];
-          den += w;
-        }
+      const double p0 = ph.lower(d), p1 = ph.upper(d);
+      const double den = 0.5 * (mu1 * mu1 - mu0 * mu0) * (p1 - p0);  // ∫∫ mu dmu dphi
+      double num[3];
+      cell_integral(s, f, ex.materials, wi, pi.values[b], mu0, mu1, p0, p1, g, false, num);
+      if (sharp) {
+        double coarse[3], start[3], fine[3];
+        cell_integral(s, f, ex.materials, wi, pi.values[b], mu0, mu1, p0, p1, g, true, coarse);
+        static const GaussLegendre g4(4);
+        cell_integral(s, f, ex.materials, wi, pi.values[b], mu0, mu1, p0, p1, g4, true, start);
+        const double scale = std::fmax(std::fabs(num[0]), std::fmax(std::fabs(num[1]), std::fabs(num[2])));
+        sharp_cell_integral(s, f, ex.materials, wi, pi.values[b], mu0, mu1, p0, p1, start, 1e-5 * scale + 1e-300, 7, fine);
+        for (int k = 0; k < 3; ++k) num[k] += fine[k] - coarse[k];
+      }
       for (std::size_t k = 0; k < 3; ++k) out[t.index({a, b, c, d, k})] = num[k] / den;
     }
   });
@@ -176,7 +270,7 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
     const std::size_t a = dir / pi.size(), b = dir % pi.size();
     const Vec3 wi = spherical_direction(ti.values[a], pi.values[b]);
     double delta[3];
-    for (int k = 0; k < 3; ++k) delta[k] = mg::lrpb23_base_delta_energy(f, channel_of(ex.materials.base, k), wi);
+    for (int k = 0; k < 3; ++k) delta[k] = mg::gdist_base_delta_energy(f, channel_of(ex.materials.base, k), wi, s.masking);
     if (delta_table) {
       for (std::size_t k = 0; k < 3; ++k) {
         out[t.index({a, b, base, k})] = delta[k];
@@ -189,7 +283,8 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
     // the multiple scattering it leaves out.
     double e[2][3] = {{0, 0, 0}, {0, 0, 0}};
     const double span = ex.isotropic ? kPi : 2 * kPi;
-    const Spec grain{Spec::Part::Grain, s.form, s.lambda}, base_part{Spec::Part::Base, s.form, s.lambda};
+    const Spec grain{Spec::Part::Grain, s.form, s.lambda, false, s.masking, s.g2};
+    const Spec base_part{Spec::Part::Base, s.form, s.lambda, false, s.masking, s.g2};
     for (std::size_t u = 0; u < gm.x.size(); ++u)
       for (std::size_t v = 0; v < gp.x.size(); ++v) {
         const double mu = 0.5 + 0.5 * gm.x[u], phi = 0.5 * span * (1 + gp.x[v]);

@@ -11,6 +11,7 @@
 #include "models/micrograin/grain_field.h"
 #include "models/micrograin/height_masking.h"
 #include "models/micrograin/ndf.h"
+#include "models/micrograin/pore_visibility.h"
 #include "models/micrograin/smith_lambda.h"
 #include "models/micrograin/unit_space.h"
 #include "models/micrograin/visible_filling_factor.h"
@@ -37,6 +38,8 @@ std::vector<ModelInfo> geometry_model_list() {
       {"g1_g_dist", "g1", true, "projected-area average of the height-correlated G_dist (LRPB24) over the NDF"},
       {"g1_smith_quadrature", "g1", false, "Smith G1 = 1/(1 + Lambda), Lambda by quadrature of the exact NDF"},
       {"g1_smith_series_n4", "g1", false, "Smith G1 with Lambda from the series of LRPB23 Eq. 25, terms F0..F4"},
+      {"g1_smith_series_n6", "g1", false,
+       "Smith G1 with Lambda from the series of LRPB23 Eq. 25, terms F0..F6 (closed form for any k; issue #15)"},
       {"g1_smith_ggx_alpha_tilde", "g1", false, "Smith G1 of GGX at alpha~ (LRPB23 Eq. 18)"},
       {"g1_conditional_g_dist", "g1_conditional", true, "height-correlated masking G_dist(i, h(m)) (LRPB24)"},
       {"g1_conditional_smith", "g1_conditional", false, "Smith: G1(i) = 1/(1 + Lambda_quad(i)) for every front-facing m"},
@@ -44,6 +47,9 @@ std::vector<ModelInfo> geometry_model_list() {
        "V(i) V(o), V(d) = (1 - tau+(d)) / (1 - tau0) (LRPB23 Eq. 22)"},
       {"pore_visibility_independence_eq24", "pore_visibility", false,
        "independent visibilities, V(i) V(o): the assumption behind w+ (LRPB23 Eq. 23-24)"},
+      {"pore_visibility_union", "pore_visibility", true,
+       "exp(-rho (|K_i U K_o| - pi)): one Poisson void probability over the union of the two shadow sets of "
+       "Eq. 22, in closed form (issue #15)"},
       {"vndf_eq13", "vndf", true, "visible NDF with height-correlated masking (vNDF paper Eq. 6/11-13)"},
       {"vndf_sampler", "vndf", false,
        "histogram of the vNDF sampler (vNDF paper Sec. 4, Listings 1-4; theta by the tabulated sigma^-1, phi by "
@@ -141,7 +147,8 @@ std::vector<double> evaluate_geometry_model(const std::string& model, const Tabl
   const mg::GrainField f{geometry.tau0, geometry.beta_x, geometry.beta_y};
   const bool isotropic = !geometry.anisotropic();
   const double beta = geometry.beta_x;
-  if (!isotropic && (model == "ndf_ggx_alpha_tilde" || model == "g1_smith_series_n4" || model == "g1_smith_ggx_alpha_tilde"))
+  if (!isotropic && (model == "ndf_ggx_alpha_tilde" || model == "g1_smith_series_n4" || model == "g1_smith_series_n6" ||
+                      model == "g1_smith_ggx_alpha_tilde"))
     throw std::invalid_argument("model " + model + " is defined for isotropic grains only");
   std::vector<double> out(t.cells(), NAN);
   const double rho = mg::unit_density(geometry.tau0);
@@ -175,6 +182,7 @@ std::vector<double> evaluate_geometry_model(const std::string& model, const Tabl
       else if (model == "g1_exact_tau_plus") out[k] = mg::tau_plus(f, wi) / (geometry.tau0 * (1 + mg::lambda_quadrature(f, wi)));
       else if (model == "g1_smith_quadrature") out[k] = 1 / (1 + mg::lambda_quadrature(f, wi));
       else if (model == "g1_smith_series_n4") out[k] = 1 / (1 + mg::lambda_series(f, theta, 4));
+      else if (model == "g1_smith_series_n6") out[k] = 1 / (1 + mg::lambda_series(f, theta, 6));
       else if (model == "g1_smith_ggx_alpha_tilde") out[k] = 1 / (1 + mg::lambda_ggx_equivalent(f, theta));
       else if (model == "g1_g_dist") {
         // Average of G_dist over the height field's normals, weighted by projected area <i.m>+ D(m).
@@ -210,12 +218,11 @@ std::vector<double> evaluate_geometry_model(const std::string& model, const Tabl
     return out;
   }
   if (t.quantity == "pore_visibility" || t.quantity == "pore_visibility_independent") {
-    const double open = 1 - geometry.tau0;
     for_each_cell(t, [&](std::size_t k, const std::vector<std::size_t>& i) {
       const double phi_i = phi_i_of(t, i);
       const Vec3 wi = spherical_direction(t.axes[0].values[i[0]], phi_i);
       const Vec3 wo = spherical_direction(t.axes[1].values[i[1]], phi_i + t.axes[2].values[i[2]]);
-      out[k] = ((1 - mg::tau_plus(f, wi)) / open) * ((1 - mg::tau_plus(f, wo)) / open);
+      out[k] = model == "pore_visibility_union" ? mg::pore_visibility_union(f, wi, wo) : mg::pore_visibility_product(f, wi, wo);
     });
     return out;
   }
