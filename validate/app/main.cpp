@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sim/experiment/config_error.h"
+#include "sim/hdf5/table_file.h"
 #include "sim/parallel/communicator.h"
 #include "validate/app/verbs.h"
 
@@ -26,7 +27,7 @@ const char* kUsage =
     "  dataset DATASET.toml -o DATA.h5         simulate every entry of a parameter sweep (--shard K/N)\n"
     "  merge SHARD.h5... -o DATA.h5            combine dataset shards into one file\n"
     "\n"
-    "`mcref <verb> --help` explains each verb.\n";
+    "`mcref <verb> --help` explains each verb; `mcref --version` prints the version and commit.\n";
 
 // Under MPI, an error every rank met alike is printed by rank 0 only; an
 // error one rank met alone while the others wait for it ends the job.
@@ -52,6 +53,10 @@ int main(int argc, char** argv) {
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::fputs(kUsage, args.empty() ? stderr : stdout);
     return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--version") {
+    std::printf("mcref %s (commit %s)\n", mcref::mcref_version().c_str(), mcref::mcref_git_commit().c_str());
+    return 0;
   }
   std::string command_line;
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);

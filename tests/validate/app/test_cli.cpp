@@ -132,6 +132,20 @@ TEST_F(Cli, SetWithBadKeyPathIsRejected) {
   EXPECT_TRUE(fs::exists(out));
 }
 
+// --version names the same version and commit as the provenance of the
+// files this binary writes.
+TEST_F(Cli, VersionMatchesTheProvenanceOfWrittenFiles) {
+  const Result v = mcref("--version");
+  ASSERT_EQ(v.exit_code, 0) << v.err;
+  ASSERT_EQ(lines(v.out).size(), 1u) << v.out;
+  const std::string exp = write("x.toml", experiment());
+  ASSERT_EQ(mcref("simulate " + quote(exp) + " -o " + quote(path("t.h5")) + " --quiet").exit_code, 0);
+  const Result info = mcref("info " + quote(path("t.h5")));
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("  " + lines(v.out)[0] + ", created"), std::string::npos)
+      << "--version: " << v.out << "info: " << info.out;
+}
+
 TEST_F(Cli, HelpWorksForEveryVerb) {
   for (const char* args : {"--help", "-h", "help", "simulate --help", "validate --help", "info --help"}) {
     const Result r = mcref(args);
