@@ -1,4 +1,8 @@
+#include <fnmatch.h>
+
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "sim/experiment/config_error.h"
 #include "sim/files/output_path.h"
@@ -9,7 +13,7 @@ namespace mcref::cli {
 
 namespace {
 const char* kHelp =
-    "usage: mcref validate SUITE.toml -o OUTDIR [--threads N] [--force] [--quiet]\n"
+    "usage: mcref validate SUITE.toml -o OUTDIR [--case PATTERN]... [--threads N] [--force] [--quiet]\n"
     "\n"
     "Runs every case of a validation suite: simulates its experiment (reusing\n"
     "OUTDIR/tables/<case>.h5 when its stored config, mcref version and clean git\n"
@@ -17,9 +21,32 @@ const char* kHelp =
     "table with the analytic models, and writes OUTDIR/results.json,\n"
     "OUTDIR/plots/*.png and OUTDIR/report.html.\n"
     "Exit status: 0 if every check passes, 1 if any fails, 2 on bad input.\n"
+    "  --case PATTERN  run only the cases whose name matches PATTERN (shell wildcards\n"
+    "                  * ? [..]; quote it); repeat to run several; results.json and\n"
+    "                  the report then hold those cases only\n"
     "  --force    simulate again even when cached tables are current\n"
     "Under mpirun -np N, each case's batches are spread over the N ranks (the same\n"
     "tables as one process); rank 0 checks the models and writes everything.\n";
+// Keeps the cases whose name matches any pattern (fnmatch); none is an error.
+void select_cases(Suite& suite, const std::vector<std::string>& patterns) {
+  std::vector<Case> kept;
+  for (const Case& c : suite.cases)
+    for (const std::string& p : patterns)
+      if (fnmatch(p.c_str(), c.name.c_str(), 0) == 0) {
+        kept.push_back(c);
+        break;
+      }
+  if (kept.empty()) {
+    std::string names;
+    for (std::size_t k = 0; k < suite.cases.size() && k < 8; ++k) names += (k ? ", " : "") + suite.cases[k].name;
+    if (suite.cases.size() > 8) names += ", ...";
+    std::string joined;
+    for (const std::string& p : patterns) joined += (joined.empty() ? "" : " ") + p;
+    throw ConfigError("command line", "--case", "'" + joined + "' matches no case of " + suite.file + " (its cases: " + names + ")");
+  }
+  suite.cases = std::move(kept);
+}
+
 }  // namespace
 
 int validate(const std::vector<std::string>& raw, const std::string& command_line) {
@@ -30,7 +57,8 @@ int validate(const std::vector<std::string>& raw, const std::string& command_lin
   }
   if (a.positional.size() != 1) throw ConfigError("command line", "", "mcref validate needs exactly one SUITE.toml (see --help)");
   if (a.output.empty()) throw ConfigError("command line", "-o", "an output directory is required (-o OUTDIR)");
-  const Suite suite = load_suite(a.positional[0]);
+  Suite suite = load_suite(a.positional[0]);
+  if (!a.cases.empty()) select_cases(suite, a.cases);
   SuiteOptions o;
   o.ranks = &Communicator::world();  // under mpirun: each case's batches spread over the ranks
   check_on_root(*o.ranks, [&] { check_output_directory(a.output, {a.positional[0]}); });

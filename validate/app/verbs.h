@@ -24,6 +24,7 @@ struct Args {
   bool quiet = false;
   bool help = false;
   bool force = false;
+  std::vector<std::string> cases;  // validate --case PATTERN (shell wildcards), any of them
 };
 // An integer command-line value in [lo, hi] (ConfigError naming the flag otherwise).
 long long parse_integer(const std::string& flag, const std::string& value, long long lo, long long hi);

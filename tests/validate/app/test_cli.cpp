@@ -178,3 +178,32 @@ TEST_F(Cli, FailedRunLeavesAnExistingGoodFileUnchanged) {
   expect_one_line_error(mcref("simulate " + quote(exp) + " -o " + quote(nowhere) + " --quiet"), {nowhere});
   EXPECT_FALSE(fs::exists(path("no")));
 }
+
+// validate --case runs only the matching cases (shell wildcards, repeatable);
+// a pattern that matches nothing is refused before any work, listing the cases.
+TEST_F(Cli, ValidateCaseFilterRunsOnlyMatchingCases) {
+  write("x.toml", experiment());
+  write("suite.toml",
+        "[suite]\nname = \"s\"\n"
+        "[[case]]\nname = \"tau_a\"\nexperiment = \"x.toml\"\n"
+        "[[case]]\nname = \"tau_b\"\nexperiment = \"x.toml\"\n"
+        "[[case]]\nname = \"other\"\nexperiment = \"x.toml\"\n");
+  fs::create_directories(path("out"));
+  const Result r = mcref("validate " + quote(path("suite.toml")) + " -o " + quote(path("out")) +
+                         " --case 'tau_*' --case other --quiet");
+  EXPECT_NE(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(fs::exists(path("out/tables/tau_a.h5")));
+  EXPECT_TRUE(fs::exists(path("out/tables/other.h5")));
+  fs::remove_all(path("out"));
+  fs::create_directories(path("out"));
+  const Result one = mcref("validate " + quote(path("suite.toml")) + " -o " + quote(path("out")) + " --case tau_b --quiet");
+  EXPECT_NE(one.exit_code, 2) << one.err;
+  EXPECT_TRUE(fs::exists(path("out/tables/tau_b.h5")));
+  EXPECT_FALSE(fs::exists(path("out/tables/tau_a.h5")));
+  EXPECT_FALSE(fs::exists(path("out/tables/other.h5")));
+  const Result none = mcref("validate " + quote(path("suite.toml")) + " -o " + quote(path("out")) + " --case 'nope*' --quiet");
+  EXPECT_EQ(none.exit_code, 2);
+  ASSERT_EQ(lines(none.err).size(), 1u) << none.err;
+  for (const char* piece : {"--case", "nope*", "tau_a, tau_b, other"})
+    EXPECT_NE(none.err.find(piece), std::string::npos) << none.err;
+}
