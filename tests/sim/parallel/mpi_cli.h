@@ -37,6 +37,15 @@ inline std::string mcref_ranks(int ranks, const std::string& args) {
          "; rc=$?; echo $rc > rc.$OMPI_COMM_WORLD_RANK; exit $rc'";
 }
 
+// `mcref args` on N ranks for a failing run: each rank writes its exit code to
+// rc.<rank> (stale ones removed first), then exits 0. (mpirun ends the job as
+// soon as one rank exits non-zero, which can kill another rank's shell before
+// it has written its code: a race under load.) Check the codes with rank_codes().
+inline std::string mcref_ranks_failing(int ranks, const std::string& args) {
+  return "rm -f rc.*; " + mpirun(ranks) + "sh -c '\"" + std::string(MCREF_BINARY) + "\" " + args +
+         "; echo $? > rc.$OMPI_COMM_WORLD_RANK'";
+}
+
 // `mcref args` on N ranks; each rank writes its pid to pid.<rank> (the shell
 // execs mcref, so it is mcref's pid).
 inline std::string mcref_ranks_pids(int ranks, const std::string& args) {
