@@ -1,0 +1,107 @@
+"""What the validation plots share: fonts, how models and series are told apart,
+the residual under each comparison, the y scale, and atomic saving.
+
+Models: model k of a figure gets colour COLOURS[k % 9] and line style
+STYLES[k % 8], so any two models differ in colour and in style (k < 8) and no
+two share both (k < 72). Series of one model (θi, component, ...) are lighter
+shades of its colour; the simulation is black/grey with one marker per series.
+"""
+import os
+
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.colors as mcolors
+import matplotlib.pyplot as plt
+import numpy as np
+
+# Figures are drawn at the size the report shows them (<= 10 in at DPI = 1100 px),
+# so 9 pt text stays 9 pt on the page.
+DPI = 110
+FIG_WIDTH = 10.0
+plt.rcParams.update({"font.size": 9, "axes.titlesize": 9, "axes.labelsize": 9, "legend.fontsize": 9,
+                     "xtick.labelsize": 8.5, "ytick.labelsize": 8.5, "figure.titlesize": 11})
+
+COLOURS = [c for c in plt.rcParams["axes.prop_cycle"].by_key()["color"] if c != "#7f7f7f"]  # grey is the simulation's
+STYLES = ["-", "--", "-.", ":", (0, (6, 1, 1, 1, 1, 1)), (0, (8, 2)), (0, (3, 1, 1, 1)), (0, (1, 3))]
+MARKERS = ["o", "s", "^", "D", "v", "P", "X", "*"]
+CHANNEL_COLOURS = {"R": "#d62728", "G": "#2ca02c", "B": "#1f77b4"}
+
+
+def model_style(k):
+    """(colour, linestyle) of the k-th model of a figure."""
+    return COLOURS[k % len(COLOURS)], STYLES[k % len(STYLES)]
+
+
+def shade(colour, s, n):
+    """Series s of n: the model's colour, lighter for later series."""
+    t = 0.0 if n <= 1 else 0.6 * s / (n - 1)
+    return tuple((1 - t) * np.array(mcolors.to_rgb(colour)) + t)
+
+
+def sim_colour(s, n):
+    g = 0.0 if n <= 1 else 0.55 * s / (n - 1)
+    return (g, g, g)
+
+
+def residual_kind(models):
+    """z for tables whose models are all exact (agreement within the error bars is the
+    claim); the model's relative error otherwise (its size is the finding)."""
+    return "z" if models and all(m.exact for m in models) else "rel"
+
+
+RESIDUAL_LABEL = {"z": "z = (model − sim) / σ", "rel": "model / sim − 1 (%)"}
+
+
+def residual(kind, sim, se, model):
+    """Residual and its 1-sigma error bar. rel is left out where the simulation is not
+    significantly non-zero (|sim| <= 2 σ): the ratio would be noise."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        if kind == "z":
+            r = np.where(se > 0, (model - sim) / se, np.nan)
+            return r, None
+        ok = np.abs(sim) > 2 * se
+        r = np.where(ok, 100 * (model / sim - 1), np.nan)
+        e = np.where(ok, 100 * np.abs(model) * se / sim ** 2, np.nan)
+        return r, e
+
+
+def scale_residual_axis(ax, kind, values):
+    """Reference lines; symlog when a few large residuals would flatten the small ones."""
+    finite = np.abs(values[np.isfinite(values)]) if values.size else np.array([])
+    big = finite.max() if finite.size else 0.0
+    lin = 3 if kind == "z" else 5
+    if kind == "z":
+        for y in (-2, 2):
+            ax.axhline(y, color="0.6", lw=0.8, ls=":")
+    if big > 10 * lin:
+        ax.set_yscale("symlog", linthresh=lin)
+        top = 10 ** np.ceil(np.log10(big))
+        ticks = [t for t in (-1e4, -1e3, -100, -10, 0, 10, 100, 1e3, 1e4) if abs(t) <= top and (t == 0 or abs(t) >= 10)]
+        ax.set_yticks(ticks)
+        ax.set_yticklabels([f"{t:g}" for t in ticks])
+        ax.set_ylim(-top, top)
+    ax.axhline(0, color="k", lw=0.8)
+
+
+def wants_log(values):
+    """Log y when the positive values span more than a decade."""
+    v = values[np.isfinite(values) & (values > 0)]
+    return v.size > 1 and v.max() > 10 * v.min()
+
+
+LOG_DECADES = 5
+
+
+def set_log_y(ax, values):
+    """Log y over at most LOG_DECADES decades below the largest value."""
+    v = values[np.isfinite(values) & (values > 0)]
+    ax.set_yscale("log")
+    ax.set_ylim(max(v.min(), v.max() * 10.0 ** -LOG_DECADES) / 1.5, v.max() * 1.5)
+
+
+def save(fig, path):
+    """Write to a temporary name and rename: never a half-written PNG."""
+    tmp = path + ".tmp.png"
+    fig.savefig(tmp, dpi=DPI)
+    os.replace(tmp, path)
+    plt.close(fig)
