@@ -256,10 +256,10 @@ def lobes_figure(case):
             ax.set_ylim(min(re), max(re))
         mimg = [_lobe(t, m.values, i, j, chans, folded) for m in models]
         norm = log_norm(sim)
-        im = axes[0].pcolormesh(P, R, sim, cmap=_cmap("magma"), norm=norm, shading="flat")
+        im = axes[0].pcolormesh(P, R, sim, cmap=_cmap("magma"), norm=norm, shading="flat", antialiased=False)
         axes[0].set_title("simulation", fontsize=8.5)
         if mimg:
-            axes[1].pcolormesh(P, R, mimg[0], cmap=_cmap("magma"), norm=norm, shading="flat")
+            axes[1].pcolormesh(P, R, mimg[0], cmap=_cmap("magma"), norm=norm, shading="flat", antialiased=False)
             axes[1].set_title(models[0].name, fontsize=8.5)
         cb = sf.colorbar(im, ax=axes[:2], location="left", fraction=0.04, pad=0.02)
         cb.set_label(ps_unit(t), fontsize=8)
@@ -271,7 +271,7 @@ def lobes_figure(case):
             kind = ps.residual_kind([models[k]])
             r, _ = ps.residual(kind, sim, se, mimg[k])
             norm_r, label = residual_norm(kind, r)
-            imr = ax.pcolormesh(P, R, r, cmap=_cmap("RdBu_r"), norm=norm_r, shading="flat")
+            imr = ax.pcolormesh(P, R, r, cmap=_cmap("RdBu_r"), norm=norm_r, shading="flat", antialiased=False)
             ax.set_title(models[k].name, fontsize=8.5)
             cb = sf.colorbar(imr, ax=ax, location="bottom", fraction=0.05, pad=0.04, extend="both")
             cb.set_label(label, fontsize=8)
