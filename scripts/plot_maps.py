@@ -85,7 +85,7 @@ def _block_matrix(upper, lower, pick, chans):
     parts = [table_matrix(t, pick(t), chans) if t is not None and pick(t) is not None else None
              for t in (upper, lower)]
     rows = next(p.shape[0] for p in parts if p is not None)
-    widths = [(t.value[..., 0] if False else table_matrix(t, t.value, chans)).shape[1] if t is not None else 0
+    widths = [table_matrix(t, t.value, chans).shape[1] if t is not None else 0
               for t in (upper, lower)]
     out = []
     for p, w in zip(parts, widths):
