@@ -102,7 +102,7 @@ def overlay_figure(label, cases):
     for a in (ax, rax):
         a.grid(alpha=0.3)
     leg = fig.legend(handles=case_handles, loc="upper left", bbox_to_anchor=(0.66, 0.9), frameon=False,
-                     title=f"cases: simulation (points)", fontsize=8.5)
+                     title="cases: simulation (points)", fontsize=8.5)
     fig.add_artist(leg)
     fig.legend(handles=[Line2D([], [], color="k", ls=style[m], lw=1.4, label=m) for m in model_names],
                loc="lower left", bbox_to_anchor=(0.66, 0.1), frameon=False, title="models (lines)", fontsize=8.5,
