@@ -325,7 +325,7 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
                    bad ? "FAIL" : "ok", results.back().reused ? " (cached tables)" : "");
     }
   }
-  if (o.ranks->root()) write_report(suite, results, o);
+  if (o.ranks->root()) write_results(suite, results, o);
   return failures;
 }
 
