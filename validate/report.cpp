@@ -83,7 +83,8 @@ std::string results_json(const Suite& suite, const std::vector<CaseResult>& resu
         << ", \"multiple\": " << json_number(e.multiple) << "}";
     }
     const Provenance& p = c.provenance;
-    j << "],\n     \"reused\": " << (c.reused ? "true" : "false") << ", \"provenance\": {\"mcref_version\": "
+    // Provenance as stored with the tables: the same whether they were simulated or reused.
+    j << "],\n     \"provenance\": {\"mcref_version\": "
       << json_string(p.mcref_version) << ", \"git_commit\": " << json_string(p.git_commit)
       << ", \"created\": " << json_string(p.created) << ", \"seed\": " << p.seed
       << ", \"command_line\": " << json_string(p.command_line) << ", \"config\": " << json_string(p.config) << "}}"
