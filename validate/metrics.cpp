@@ -15,7 +15,10 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
   c.z.assign(sim.size(), NAN);
   const double nu = static_cast<double>(batches - 1);
   double rel2 = 0;
+  std::size_t zero_pairs = 0, nonzero = 0;  // for identically_zero
   for (std::size_t i = 0; i < sim.size(); ++i) {
+    if (sim[i] == 0 && se[i] == 0 && (model[i] == 0 || std::isnan(model[i]))) zero_pairs += model[i] == 0;
+    else ++nonzero;
     if (!std::isfinite(sim[i]) || !std::isfinite(model[i]) || !std::isfinite(se[i])) {
       if (std::isnan(sim[i])) ++c.empty_cells;
       if (std::isfinite(sim[i]) && !std::isfinite(model[i])) ++c.model_undefined;
@@ -61,6 +64,7 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
       ++c.signal_cells;
     }
   }
+  c.identically_zero = zero_pairs > 0 && nonzero == 0;
   c.p_value = c.cells ? chi2_survival(c.chi2, static_cast<double>(c.cells)) : 1;
   c.rms_rel_error = c.signal_cells ? std::sqrt(rel2 / c.signal_cells) : 0;
   return c;
@@ -68,6 +72,11 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
 
 Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance) {
   char buf[256];
+  if (c.identically_zero) {
+    std::snprintf(buf, sizeof buf, "simulation and model are zero in all %zu cells that have a model value: nothing to check",
+                  c.exact_cells);
+    return {"n/a", buf};
+  }
   if (exact && c.gross_mismatches > 0) {
     std::snprintf(buf, sizeof buf, "%zu zero-variance cells differ from the model by more than 1 %%", c.gross_mismatches);
     return {"FAIL", buf};

@@ -20,6 +20,11 @@ struct Comparison {
   std::size_t gross_mismatches = 0;  // non-empty zero-variance cells more than 1 % off the model
   std::size_t empty_cells = 0;       // cells the simulation left empty (NaN: a batch had no sample)
   std::size_t model_undefined = 0;   // cells with a simulated value where the model is NaN
+  // Simulation and model both identically zero: every cell has sim = 0 with
+  // stderr 0, and model = 0 (or NaN: not evaluated), at least one cell both 0.
+  // Such a check cannot fail (e.g. an all-zero delta table against a model
+  // without a delta lobe): judged "n/a".
+  bool identically_zero = false;
   std::vector<double> z;         // per cell (NaN where not compared)
   double chi2_per_dof() const { return cells ? chi2 / static_cast<double>(cells) : 0; }
 };
@@ -36,10 +41,12 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& st
                    const std::vector<double>& model, long long batches, const std::vector<double>& model_se = {});
 
 struct Verdict {
-  std::string status;  // "pass", "FAIL", or "measured" (approximate model, no tolerance)
+  std::string status;  // "pass", "FAIL", "measured" (approximate model, no tolerance)
+                       // or "n/a" (simulation and model identically zero)
   std::string reason;
 };
 
+// Identically zero simulation and model: "n/a", whatever the model.
 // Exact model: passes iff p_value >= alpha, max|z| <= Sidak bound at alpha,
 // and no non-empty zero-variance cell is more than 1 % off.
 // Approximate model: passes iff max_rel_error <= tolerance (if tolerance > 0),

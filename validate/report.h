@@ -1,6 +1,8 @@
 #pragma once
-// The validation report: results.json (every check and its per-cell model
-// values, read by scripts/plot_validation.py), plots, and report.html.
+// The results of a validation run: OUTDIR/results.json (every check, its
+// verdict and per-cell model values, the energy shares, error budgets and
+// provenance of each case). scripts/plot_validation.py draws the plots from it
+// and the tables, scripts/report.py renders report.html from it and the plots.
 #include <string>
 #include <vector>
 
@@ -53,8 +55,8 @@ struct CaseResult {
   std::vector<CheckResult> checks;
 };
 
-// Writes OUTDIR/results.json, runs the plot script, writes OUTDIR/report.html,
-// and prints the summary and the report's path.
-void write_report(const Suite& suite, const std::vector<CaseResult>& results, const SuiteOptions& options);
+// Writes OUTDIR/results.json and prints the failures, the counts (pass, FAIL,
+// measured, n/a) and how to render the plots and the report.
+void write_results(const Suite& suite, const std::vector<CaseResult>& results, const SuiteOptions& options);
 
 }  // namespace mcref

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 
 #include <tbb/global_control.h>
@@ -16,6 +17,7 @@
 #include "sim/experiment/toml_reader.h"
 #include "sim/files/input_file.h"
 #include "sim/hdf5/table_file.h"
+#include "sim/parallel/progress.h"
 #include "sim/tally/brdf_tally.h"
 #include "validate/metrics.h"
 #include "validate/model_evaluation.h"
@@ -309,12 +311,21 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
     for (const Check& chk : checks)
       if (!f.find(chk.table)) throw std::runtime_error("table " + chk.table + " missing from " + cr.table_file);
     // The checks of a case are independent: evaluated in parallel, kept in order.
+    // Progress counts the cells of the finished checks.
+    double cells = 0;
+    for (const Check& chk : checks) cells += static_cast<double>(f.find(chk.table)->cells());
+    Progress progress("[" + std::to_string(k + 1) + "/" + std::to_string(suite.cases.size()) + "] " + c.name + " models",
+                      cells, o.quiet);
+    std::mutex progress_lock;
     cr.checks.resize(checks.size());
     tbb::parallel_for(std::size_t{0}, checks.size(), [&](std::size_t i) {
       // Isolated, so that a thread waiting inside one check (on a model's
       // cache lock, or for its nested parallel loops) never starts another.
       tbb::this_task_arena::isolate([&] { cr.checks[i] = run_check(checks[i], *f.find(checks[i].table), ex, suite); });
+      const std::lock_guard<std::mutex> lock(progress_lock);
+      progress.advance(static_cast<double>(f.find(checks[i].table)->cells()));
     });
+    progress.finish();
     for (const CheckResult& r : cr.checks) failures += r.verdict.status == "FAIL";
     cr.budget = error_budgets(f, cr.checks);
     results.push_back(std::move(cr));
@@ -325,7 +336,7 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
                    bad ? "FAIL" : "ok", results.back().reused ? " (cached tables)" : "");
     }
   }
-  if (o.ranks->root()) write_report(suite, results, o);
+  if (o.ranks->root()) write_results(suite, results, o);
   return failures;
 }
 

@@ -5,9 +5,9 @@
 // case's effective config), evaluates the models, writes
 //   OUTDIR/tables/<case>.h5   the simulated tables
 //   OUTDIR/results.json       every check: metrics, verdicts, model values per cell
-//   OUTDIR/plots/<case>.png   one figure per case (scripts/plot_validation.py)
-//   OUTDIR/report.html        summary table, plots, provenance
-// and returns the number of failed checks.
+// and returns the number of failed checks. The plots (OUTDIR/plots/, by
+// scripts/plot_validation.py) and OUTDIR/report.html (scripts/report.py) are
+// rendered from these afterwards, without simulating.
 #include <string>
 #include <vector>
 
@@ -43,9 +43,9 @@ struct SuiteOptions {
   bool quiet = false;
   bool force = false;  // re-simulate even when cached tables are current
   std::string command_line;
-  std::string scripts_dir;  // where plot_validation.py lives
+  std::string scripts_dir;  // where plot_validation.py and report.py live (named in the closing hint)
   // Ranks each case's batches are spread over (sim/parallel/batch_loop.h);
-  // rank 0 alone checks the models and writes tables, plots and report.
+  // rank 0 alone checks the models and writes tables and results.
   const Communicator* ranks = &Communicator::self();
 };
 

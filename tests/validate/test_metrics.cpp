@@ -122,3 +122,37 @@ TEST(Metrics, EmptyCellsAreCountedNotCompared) {
   const Verdict none = judge(compare({nan}, {nan}, {1.0}, 32), true, 1e-3, 0);
   EXPECT_NE(none.reason.find("1 empty cells"), std::string::npos) << none.reason;
 }
+
+// "n/a": a simulation and a model both identically zero (an all-zero delta
+// table against a model without a delta lobe) cannot fail; it is neither a
+// pass nor a failure. Cells where the model is NaN (not evaluated, e.g. a
+// duplicate channel) do not count; any non-zero value on either side does.
+TEST(Metrics, IdenticallyZeroIsNotApplicable) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<double> zeros(4, 0.0);
+  for (bool exact : {true, false}) {
+    const Comparison c = compare(zeros, zeros, zeros, 32);
+    EXPECT_TRUE(c.identically_zero);
+    EXPECT_EQ(judge(c, exact, 1e-3, 0).status, "n/a");
+    EXPECT_EQ(judge(c, exact, 1e-3, 0.05).status, "n/a");
+    EXPECT_EQ(judge(compare(zeros, zeros, {0.0, nan, 0.0, nan}, 32), exact, 1e-3, 0).status, "n/a");
+  }
+  // Either side non-zero in one cell: an ordinary check.
+  const Comparison sim_nonzero = compare({0.0, 0.0, 1e-9, 0.0}, zeros, zeros, 32);
+  EXPECT_FALSE(sim_nonzero.identically_zero);
+  EXPECT_NE(judge(sim_nonzero, true, 1e-3, 0).status, "n/a");
+  const Comparison model_nonzero = compare(zeros, zeros, {0.0, 0.0, 0.0, 0.5}, 32);
+  EXPECT_FALSE(model_nonzero.identically_zero);
+  EXPECT_EQ(judge(model_nonzero, true, 1e-3, 0).status, "FAIL");  // a zero-variance cell that differs
+  const Comparison model_tiny = compare(zeros, zeros, {0.0, 0.0, 0.0, 1e-12}, 32);
+  EXPECT_FALSE(model_tiny.identically_zero);
+  EXPECT_EQ(judge(model_tiny, true, 1e-3, 0).status, "pass");  // equal to 1e-6: a check that could have failed
+  // Batches that differ (stderr > 0) though the mean is 0: not identically zero.
+  const Comparison noisy = compare(zeros, {0.0, 0.1, 0.0, 0.0}, zeros, 32);
+  EXPECT_FALSE(noisy.identically_zero);
+  EXPECT_EQ(judge(noisy, true, 1e-3, 0).status, "pass");
+  // No model value at all, or empty simulated cells: not n/a either.
+  EXPECT_EQ(judge(compare(zeros, zeros, std::vector<double>(4, nan), 32), true, 1e-3, 0).status, "FAIL");
+  EXPECT_FALSE(compare({0.0, nan, 0.0, 0.0}, {0.0, nan, 0.0, 0.0}, zeros, 32).identically_zero);
+  EXPECT_FALSE(compare(zeros, zeros, {0.0, 0.0, std::numeric_limits<double>::infinity(), 0.0}, 32).identically_zero);
+}
