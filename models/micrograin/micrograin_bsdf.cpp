@@ -179,19 +179,29 @@ double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior, T
   return f.tau0 * sum / (kPi * i.z * o.z);
 }
 
+bool has_specular_lobe(const MicroSurface& g) {
+  return g.type == MicroSurface::Type::Conductor || g.type == MicroSurface::Type::DiffuseSpecular;
+}
+
+double gdist_specular_geometry(const GrainField& f, Vec3 i, Vec3 o, TwoWay masking) {
+  const Vec3 h = half_vector(i, o);
+  const double height = unit_height(f, h);
+  const double G = masking == TwoWay::Union ? distant_masking_union(f, i, o, height)
+                                            : distant_masking(f, i, height) * distant_masking(f, o, height);
+  return f.tau0 * ndf(f, h) * G;
+}
+
+double gdist_grain_specular(const GrainField& f, const MicroSurface& g, Vec3 i, Vec3 o, TwoWay masking) {
+  if (!has_specular_lobe(g)) return 0;
+  return gdist_specular_geometry(f, i, o, masking) * specular_fresnel(g, dot(i, half_vector(i, o))) / (4 * i.z * o.z);
+}
+
 double gdist_grain_single_scattering(const GrainField& f, const MicroSurface& g, Vec3 i, Vec3 o, TwoWay masking) {
   double value = 0;
   if (g.type == MicroSurface::Type::Lambertian) value += g.kd * gdist_diffuse_geometry(f, i, o, 0.0, masking);
   if (g.type == MicroSurface::Type::DiffuseSpecular)
     value += body_factor(g) * gdist_diffuse_geometry(f, i, o, g.ior, masking);
-  if (g.type == MicroSurface::Type::Conductor || g.type == MicroSurface::Type::DiffuseSpecular) {
-    const Vec3 h = half_vector(i, o);
-    const double height = unit_height(f, h);
-    const double G = masking == TwoWay::Union ? distant_masking_union(f, i, o, height)
-                                              : distant_masking(f, i, height) * distant_masking(f, o, height);
-    value += f.tau0 * ndf(f, h) * G * specular_fresnel(g, dot(i, h)) / (4 * i.z * o.z);
-  }
-  return value;
+  return value + gdist_grain_specular(f, g, i, o, masking);
 }
 
 }  // namespace mcref::micrograin

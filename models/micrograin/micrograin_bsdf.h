@@ -75,6 +75,13 @@ enum class TwoWay { Product, Union };
 // closed form, the diffuse part by quadrature over the unit-space normals.
 double gdist_grain_single_scattering(const GrainField& f, const MicroSurface& grain, Vec3 i, Vec3 o,
                                      TwoWay masking = TwoWay::Product);
+// Its specular part alone (conductor and diffuse + specular grains; else 0):
+// tau0 D(h) G F(i.h) / (4 |i.n||o.n|); gdist_specular_geometry is its
+// channel-independent factor tau0 D(h) G.
+double gdist_grain_specular(const GrainField& f, const MicroSurface& grain, Vec3 i, Vec3 o,
+                            TwoWay masking = TwoWay::Product);
+double gdist_specular_geometry(const GrainField& f, Vec3 i, Vec3 o, TwoWay masking = TwoWay::Product);
+bool has_specular_lobe(const MicroSurface& grain);
 // Its diffuse geometry factor (1/pi) tau0 / (|i.n||o.n|) ∫ D <i.m><o.m> T_i T_o G dm,
 // T = 1 - F_dielectric(ior) of the local angle (ior <= 1: T = 1, Lambertian).
 double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior, TwoWay masking = TwoWay::Product);

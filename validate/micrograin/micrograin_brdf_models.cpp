@@ -141,16 +141,22 @@ std::vector<ModelInfo> model_list() {
 // (the part whose peak a coarse cell rule can miss; issue #15, part 5).
 void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 i, Vec3 o, double out[3],
             bool sharp_only = false) {
-  double geometry = -1;  // the G_dist diffuse geometry is channel-independent: compute once
+  // The G_dist diffuse and specular geometries are channel-independent: computed once.
+  double geometry = -1, specular_geometry = -1;
+  auto specular = [&](const mg::MicroSurface& g) {
+    if (!mg::has_specular_lobe(g)) return 0.0;
+    if (specular_geometry < 0) specular_geometry = mg::gdist_specular_geometry(f, i, o, s.masking);
+    return specular_geometry * mg::specular_fresnel(g, dot(i, normalize(i + o))) / (4 * i.z * o.z);
+  };
   for (int k = 0; k < 3; ++k) {
     mg::MicroSurface g = channel_of(mat.grain, k);
     const mg::MicroSurface b = channel_of(mat.base, k);
     double v = 0;
     if (sharp_only) {
       if (s.part != Spec::Part::Base && g.type != mg::MicroSurface::Type::Lambertian) {
-        g.kd = 0;  // diffuse + specular grains: the specular lobe alone
+        g.kd = 0;  // diffuse + specular grains: the specular lobe alone (LRPB23 form)
         v = s.form == Spec::Form::Lrpb23 ? mg::lrpb23_grain_part(f, g, i, o, s.lambda, s.g2)
-                                         : mg::gdist_grain_single_scattering(f, g, i, o, s.masking);
+                                         : specular(g);
       }
       out[k] = v;
       continue;
@@ -164,12 +170,10 @@ void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& m
         if (lambert) {
           v += g.kd * geometry;
         } else {
-          mg::MicroSurface specular_only = g;
-          specular_only.kd = 0;  // its diffuse term vanishes: the specular lobe alone
-          v += mg::body_factor(g) * geometry + mg::gdist_grain_single_scattering(f, specular_only, i, o, s.masking);
+          v += mg::body_factor(g) * geometry + specular(g);
         }
       } else {
-        v += mg::gdist_grain_single_scattering(f, g, i, o, s.masking);
+        v += specular(g);  // conductor grains
       }
     }
     if (s.part != Spec::Part::Grain) v += mg::gdist_base_part(f, b, i, o, s.masking);
