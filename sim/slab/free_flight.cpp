@@ -84,18 +84,21 @@ class GridFlight final : public FreeFlight {
         ix = std::min(m - 1, static_cast<int>(xw / c));
         iy = std::min(m - 1, static_cast<int>(yw / c));
         if (p.d.x != 0) {
+          const double inv = 1 / p.d.x;
           sx = p.d.x > 0 ? 1 : -1;
-          dtx = c / std::fabs(p.d.x);
-          tx = ((ix + (sx > 0)) * c - xw) / p.d.x;
+          dtx = c * std::fabs(inv);
+          tx = ((ix + (sx > 0)) * c - xw) * inv;
         }
         if (p.d.y != 0) {
+          const double inv = 1 / p.d.y;
           sy = p.d.y > 0 ? 1 : -1;
-          dty = c / std::fabs(p.d.y);
-          ty = ((iy + (sy > 0)) * c - yw) / p.d.y;
+          dty = c * std::fabs(inv);
+          ty = ((iy + (sy > 0)) * c - yw) * inv;
         }
       }
+      const double inv_rate = 1 / rate;
       const auto face_t = [&](int cell) {
-        return rate > 0 ? (M.faces[cell + 1] - p.depth) / rate : rate < 0 ? (M.faces[cell] - p.depth) / rate : INFINITY;
+        return rate > 0 ? (M.faces[cell + 1] - p.depth) * inv_rate : rate < 0 ? (M.faces[cell] - p.depth) * inv_rate : INFINITY;
       };
       // Horizontal (measure zero) in a row of empty cells: no collision ever.
       if (rate == 0 && !(M.row_hi[iz] > 0)) return Flight::kLost;
@@ -119,14 +122,14 @@ class GridFlight final : public FreeFlight {
           iz += rate > 0 ? 1 : -1;
           if (iz < 0 || iz == M.depth_cells()) break;
           tz = face_t(iz);
-        } else if (rate == 0 && ++lateral_steps > (1L << 24)) {
-          return Flight::kLost;  // horizontal (measure zero) along empty cells only
-        } else if (t_exit == tx) {
-          ix = ix + sx == m ? 0 : ix + sx < 0 ? m - 1 : ix + sx;
-          tx += dtx;
-        } else {
-          iy = iy + sy == m ? 0 : iy + sy < 0 ? m - 1 : iy + sy;
-          ty += dty;
+        } else {  // the next lateral cell, without branches on the (random) axis
+          if (rate == 0 && ++lateral_steps > (1L << 24)) return Flight::kLost;  // horizontal along empty cells
+          const bool step_x = tx <= ty;
+          const int nx = ix + sx, ny = iy + sy;
+          ix = step_x ? (nx == m ? 0 : nx < 0 ? m - 1 : nx) : ix;
+          iy = step_x ? iy : (ny == m ? 0 : ny < 0 ? m - 1 : ny);
+          tx += step_x ? dtx : 0.0;
+          ty += step_x ? 0.0 : dty;
         }
       }
       p.advance(t);  // through a face of the layer
