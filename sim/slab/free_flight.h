@@ -1,15 +1,13 @@
 #pragma once
-// Free flights through the layer stack. Both backends share one tracking
-// loop over the layers crossed along the ray:
+// Free flights through the layer stack, layer by layer along the ray:
 //  - homogeneous: exact exponential sampling with sigma_t(w) = rho sigma(w),
 //    the optical depth carried across layer faces (exact for piecewise-constant media);
-//  - OpenVDB: delta tracking (exact for any density field; Woodcock 1965).
-//    Non-SGGX layers: against rho_max (sigma = 1), accepted with probability
-//    rho(x) / rho_max. SGGX layers: sigma_t(x, w) = rho(x) sigma(w; S(x)) with
-//    S(x) read from the layer's S grids, against the direction-free majorant
-//    rho_max * max sqrt(lambda_max(S)); accepted with probability
-//    sigma_t(x, w) / majorant, and the scattering event then uses S(x) (D, sigma
-//    and the visible-normal sampler of that point).
+//  - OpenVDB: delta tracking (exact for any density field; Woodcock 1965)
+//    against per-cell majorants hi(cell) factor(w) walked with a 3-D DDA
+//    (sim/slab/majorant_grid.h). A tentative collision at x is real with
+//    probability sigma_t(x, w) / majorant, sigma_t(x, w) = rho(x) sigma(w; S(x))
+//    (sigma = 1 for non-SGGX layers); the scattering event then uses the S of
+//    that point (the layer's one S, or S(x) read from the grids where it varies).
 #include <memory>
 
 #include "models/core/rng.h"

@@ -1,10 +1,12 @@
 #pragma once
-// The transport view of a slab: per layer its depth range, density majorant
-// and phase function; the substrate; optional OpenVDB density grids.
+// The transport view of a slab: per layer its depth range, density and phase
+// function; the substrate; optional OpenVDB density grids with their per-cell
+// majorants (sim/slab/majorant_grid.h).
 // Depth is measured downward from the top face (z = -depth).
 #include <memory>
 #include <vector>
 
+#include "sim/slab/majorant_grid.h"
 #include "sim/slab/phase.h"
 #include "sim/slab/slab_geometry.h"
 
@@ -15,11 +17,6 @@ class DensityGrids;
 struct MediumLayer {
   double top = 0, bottom = 0;  // depths of the faces
   double density = 0;          // homogeneous density (constant profile)
-  double majorant = 0;         // max density over the layer (delta tracking)
-  // OpenVDB path, SGGX layers: S(x) read from the grids; delta tracking against
-  // the direction-free majorant max rho * max sqrt(lambda_max(S)) (density_grid.h).
-  bool sggx_grid = false;
-  double extinction_majorant = 0;
   std::unique_ptr<PhaseFunction> phase;
 };
 
@@ -27,6 +24,9 @@ class SlabMedium {
  public:
   // Builds the OpenVDB grids too when geometry.grid.openvdb is set.
   explicit SlabMedium(const SlabGeometry& geometry);
+  // Over given grids of that geometry (e.g. with voxels edited after
+  // DensityGrids built them); the majorants are read from the grids' voxels.
+  SlabMedium(const SlabGeometry& geometry, std::unique_ptr<DensityGrids> grids);
   ~SlabMedium();
   const SlabGeometry& geometry() const { return geometry_; }
   const std::vector<MediumLayer>& layers() const { return layers_; }
@@ -34,11 +34,14 @@ class SlabMedium {
   bool has_substrate() const { return geometry_.substrate.kind != SlabSubstrate::Kind::kNone; }
   double bottom() const { return layers_.back().bottom; }
   const DensityGrids* grids() const { return grids_.get(); }
+  // Per layer (OpenVDB grids only).
+  const std::vector<LayerMajorants>& majorants() const { return majorants_; }
 
  private:
   SlabGeometry geometry_;
   std::vector<MediumLayer> layers_;
   std::unique_ptr<DensityGrids> grids_;
+  std::vector<LayerMajorants> majorants_;
 };
 
 }  // namespace mcref::volume

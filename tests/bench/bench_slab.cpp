@@ -3,6 +3,17 @@
 //                     BRDF tally) for one surface-like SGGX layer, alpha 0.5,
 //                     albedo 0.9, T rho 5, theta_i = 30 deg, all orders.
 //  slab/openvdb     : the same slab through OpenVDB delta tracking (constant grid).
+//  slab/pair/<medium> : the homogeneous slab and a heterogeneous OpenVDB slab
+//                     of the same optical thickness, albedo and SGGX parameters,
+//                     run back to back in every iteration (order alternating;
+//                     9 iterations), same seeds:
+//                       linear  : linear depth profile, multipliers 0.5 (top) to 1.5;
+//                       lateral : density times 1 + 0.5 cos(2 pi x / tile) cos(2 pi y / tile),
+//                                 16 x 16 voxels per tile (the tile's mean is the layer's);
+//                     counters: ratio = median over the iterations of heterogeneous /
+//                     homogeneous events per second of wall time, with its min and max;
+//                     cpu_ratio the same per second of the process's CPU time (robust
+//                     to other jobs on the machine). (Events per path: both.)
 //  slab/floor       : a minimal homogeneous walk written here (one layer, exact
 //                     exponential flights, the same SGGX vNDF sampler, no tally,
 //                     no virtual calls, plain analog absorption by albedo): the floor.
@@ -10,10 +21,13 @@
 //                     (the paper's Sec. 5 grid in theta); the time of one 32 x 32-direction
 //                     BSDF at 1e5 paths per direction is extrapolated as 1024 * 1e5 / (paths/s).
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -21,6 +35,7 @@
 #include "models/sggx/sggx_distribution.h"
 #include "sim/experiment/experiment.h"
 #include "sim/micrograin/estimator.h"
+#include "sim/slab/density_grid.h"
 #include "sim/slab/free_flight.h"
 #include "sim/slab/medium.h"
 #include "sim/slab/walk.h"
@@ -31,11 +46,10 @@ using namespace mcref;
 
 constexpr std::uint64_t kPaths = 1 << 16;
 
-Experiment slab(bool openvdb) {
+Experiment slab(bool openvdb, const std::string& extra_geometry = "", const std::string& extra_layer = "") {
   std::string text = "[geometry]\nkind = \"slab\"\n";
   if (openvdb) text += "backend = \"openvdb\"\ndepth_voxels = 32\n";
-  text += R"([[geometry.layer]]
-phase = "sggx_surface"
+  text += extra_geometry + "[[geometry.layer]]\n" + extra_layer + R"(phase = "sggx_surface"
 alpha = 0.5
 thickness = 1.0
 optical_thickness = 5.0
@@ -82,6 +96,71 @@ void engine(benchmark::State& state, bool openvdb) {
   state.counters["events/s"] = benchmark::Counter(static_cast<double>(events), benchmark::Counter::kIsRate);
   state.counters["paths/s"] = benchmark::Counter(static_cast<double>(paths), benchmark::Counter::kIsRate);
   state.counters["events/path"] = static_cast<double>(events) / static_cast<double>(paths);
+}
+
+// The heterogeneous slabs of slab/pair (the same layer as slab(false)).
+std::unique_ptr<volume::SlabMedium> heterogeneous(const std::string& kind) {
+  if (kind == "linear")
+    return std::make_unique<volume::SlabMedium>(
+        slab(true, "", "profile = \"linear\"\nprofile_top = 0.5\nprofile_bottom = 1.5\n").slab);
+  const SlabGeometry g = slab(true, "lateral_voxels = 16\n").slab;
+  auto grids = std::make_unique<volume::DensityGrids>(g);
+  const int n = g.grid.lateral_voxels;
+  for (const openvdb::FloatGrid::Ptr& grid : grids->grids())
+    for (auto it = grid->beginValueOn(); it; ++it) {
+      const openvdb::Coord c = it.getCoord();
+      it.setValue(*it * static_cast<float>(1 + 0.5 * std::cos(2 * kPi * c.x() / n) * std::cos(2 * kPi * c.y() / n)));
+    }
+  return std::make_unique<volume::SlabMedium>(g, std::move(grids));
+}
+
+// CPU time of the whole process (all threads), s.
+double process_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Homogeneous and heterogeneous runs back to back, the order alternating.
+void pair(benchmark::State& state, std::string kind) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+  const volume::SlabMedium homogeneous(slab(false).slab);
+  const std::unique_ptr<volume::SlabMedium> het = heterogeneous(kind);
+  const std::vector<Vec3> dirs{spherical_direction(30 * kPi / 180, 0)};
+  using clock = std::chrono::steady_clock;
+  double events[2] = {0, 0};
+  std::vector<double> wall_ratios, cpu_ratios;  // heterogeneous / homogeneous events per second
+  std::uint64_t it = 0;
+  for (auto _ : state) {
+    ++it;
+    double wall[2], cpu[2], e[2];
+    for (int k = 0; k < 2; ++k) {
+      const int which = (k + static_cast<int>(it)) % 2;  // 0: homogeneous, 1: heterogeneous
+      const auto t0 = clock::now();
+      const double c0 = process_cpu_seconds();
+      e[which] = static_cast<double>(engine_paths(which ? *het : homogeneous, dirs, kPaths, it));
+      cpu[which] = process_cpu_seconds() - c0;
+      wall[which] = std::chrono::duration<double>(clock::now() - t0).count();
+    }
+    for (int w = 0; w < 2; ++w) events[w] += e[w];
+    wall_ratios.push_back(e[1] / wall[1] / (e[0] / wall[0]));
+    cpu_ratios.push_back(e[1] / cpu[1] / (e[0] / cpu[0]));
+  }
+  const double paths = static_cast<double>(kPaths) * static_cast<double>(it);
+  state.counters["ratio"] = median(wall_ratios);
+  state.counters["ratio_min"] = *std::min_element(wall_ratios.begin(), wall_ratios.end());
+  state.counters["ratio_max"] = *std::max_element(wall_ratios.begin(), wall_ratios.end());
+  state.counters["cpu_ratio"] = median(cpu_ratios);
+  state.counters["cpu_ratio_min"] = *std::min_element(cpu_ratios.begin(), cpu_ratios.end());
+  state.counters["cpu_ratio_max"] = *std::max_element(cpu_ratios.begin(), cpu_ratios.end());
+  state.counters["events/path_hom"] = events[0] / paths;
+  state.counters["events/path_het"] = events[1] / paths;
 }
 
 // The floor: one homogeneous layer, nothing but the physics.
@@ -142,6 +221,8 @@ void bsdf32(benchmark::State& state) {
 
 BENCHMARK_CAPTURE(engine, homogeneous, false)->Name("slab/homogeneous")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(engine, openvdb, true)->Name("slab/openvdb")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK_CAPTURE(pair, linear, "linear")->Name("slab/pair/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, lateral, "lateral")->Name("slab/pair/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(floor_walk)->Name("slab/floor")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK(bsdf32)->Name("slab/bsdf32")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(2.0);
 

@@ -117,10 +117,5 @@ quantity = "brdf"
 theta_i_deg = [30]
 samples = 20000
 )", "test.toml");
-  const std::vector<Table> a = slab_test::run(ex, 1), b = slab_test::run(ex, 2);
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    EXPECT_EQ(a[k].sum, b[k].sum) << a[k].name;
-    EXPECT_EQ(a[k].sum_sq, b[k].sum_sq) << a[k].name;
-  }
+  slab_test::expect_bit_identical_threads(ex);
 }

@@ -37,4 +37,14 @@ inline void expect_exact(const std::vector<mcref::Table>& tables, const std::str
   EXPECT_GT(c.cells, 0u);
 }
 
+// The same sums, bit for bit, on 1 and 2 threads.
+inline void expect_bit_identical_threads(const mcref::Experiment& ex) {
+  const std::vector<mcref::Table> a = run(ex, 1), b = run(ex, 2);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].sum, b[k].sum) << a[k].name;
+    EXPECT_EQ(a[k].sum_sq, b[k].sum_sq) << a[k].name;
+  }
+}
+
 }  // namespace slab_test

@@ -1,0 +1,152 @@
+#include "sim/slab/majorant_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sim/slab/density_grid.h"
+
+namespace mcref::volume {
+
+namespace {
+
+// Bounds of the field over the corners of a voxel cell.
+struct Bounds {
+  double lo = INFINITY, hi = 0;  // density
+  double sigma = 0;              // max sqrt(lambda_max(S)) (layers whose S varies)
+};
+
+// Bounds of a run of voxel cells in depth (one lateral cell): their union, and
+// how far apart the cells' own bounds are.
+struct Run {
+  Bounds all;
+  double least_hi = INFINITY, greatest_lo = 0, least_sigma = INFINITY;
+  void add(const Bounds& b) {
+    all.lo = std::min(all.lo, b.lo);
+    all.hi = std::max(all.hi, b.hi);
+    all.sigma = std::max(all.sigma, b.sigma);
+    least_hi = std::min(least_hi, b.hi);
+    greatest_lo = std::max(greatest_lo, b.lo);
+    least_sigma = std::min(least_sigma, b.sigma);
+  }
+  // Merged, the cells' majorants and minorants move by at most kMergeRange.
+  bool narrow() const {
+    return least_hi >= (1 - kMergeRange) * all.hi && all.lo >= (1 - kMergeRange) * greatest_lo &&
+           least_sigma >= (1 - kMergeRange) * all.sigma;
+  }
+};
+
+template <class Grid>
+bool all_active_equal(const Grid& grid, const typename Grid::ValueType& v) {
+  for (auto it = grid.cbeginValueOn(); it; ++it)
+    if (*it != v) return false;
+  return true;
+}
+
+class LayerReader {
+ public:
+  LayerReader(const DensityGrids& g, std::size_t k) : rho_(g.grids()[k]->getConstAccessor()) {
+    if (g.has_sggx(k)) {
+      diag_ = std::make_unique<openvdb::Vec3DGrid::ConstAccessor>(g.s_diag(k)->getConstAccessor());
+      off_ = std::make_unique<openvdb::Vec3DGrid::ConstAccessor>(g.s_offdiag(k)->getConstAccessor());
+    }
+  }
+  double density(int i, int j, int z) { return rho_.getValue(openvdb::Coord(i, j, z)); }
+  sggx::Mat3 matrix(int i, int j, int z) {
+    const openvdb::Coord c(i, j, z);
+    const openvdb::Vec3d d = diag_->getValue(c), o = off_->getValue(c);
+    sggx::Mat3 s;
+    s(0, 0) = d[0];
+    s(1, 1) = d[1];
+    s(2, 2) = d[2];
+    s(0, 1) = s(1, 0) = o[0];
+    s(0, 2) = s(2, 0) = o[1];
+    s(1, 2) = s(2, 1) = o[2];
+    return s;
+  }
+
+ private:
+  openvdb::FloatGrid::ConstAccessor rho_;
+  std::unique_ptr<openvdb::Vec3DGrid::ConstAccessor> diag_, off_;
+};
+
+// A layer's density is the same across each voxel plane (stored voxels).
+bool laterally_uniform(const openvdb::FloatGrid& grid) {
+  auto acc = grid.getConstAccessor();
+  for (auto it = grid.cbeginValueOn(); it; ++it)
+    if (*it != acc.getValue(openvdb::Coord(0, 0, it.getCoord().z()))) return false;
+  return true;
+}
+
+}  // namespace
+
+std::vector<LayerMajorants> build_majorants(const DensityGrids& g) {
+  const SlabGeometry& geo = g.geometry();
+  const int n = geo.grid.lateral_voxels, nz = geo.grid.depth_voxels;
+  std::vector<LayerMajorants> out;
+  double top = 0;
+  for (std::size_t k = 0; k < geo.layers.size(); ++k) {
+    const double bottom = top + geo.layers[k].thickness, hz = geo.layers[k].thickness / nz;
+    LayerMajorants L;
+    LayerReader read(g, k);
+    if (g.has_sggx(k)) {
+      const sggx::Mat3 s0 = read.matrix(0, 0, 0);
+      L.one_s = all_active_equal(*g.s_diag(k), openvdb::Vec3d(s0(0, 0), s0(1, 1), s0(2, 2))) &&
+                all_active_equal(*g.s_offdiag(k), openvdb::Vec3d(s0(0, 1), s0(0, 2), s0(1, 2)));
+      L.s_varies = !L.one_s;
+      if (L.one_s) L.s = sggx::from_matrix(s0);
+    }
+    const int m = laterally_uniform(*g.grids()[k]) ? 1 : n, b = n / m;
+    L.lateral = m;
+    L.cell_size = geo.grid.tile / m;
+    // Bounds per voxel interval in depth (r = 0 at the top) and lateral cell.
+    std::vector<Bounds> fine(static_cast<std::size_t>(nz) * m * m);
+    for (int r = 0; r < nz; ++r)
+      for (int cj = 0; cj < m; ++cj)
+        for (int ci = 0; ci < m; ++ci) {
+          Bounds& c = fine[(static_cast<std::size_t>(r) * m + cj) * m + ci];
+          for (int z = nz - r - 1; z <= nz - r; ++z)
+            for (int j = cj * b; j <= (cj + 1) * b; ++j)
+              for (int i = ci * b; i <= (ci + 1) * b; ++i)
+                for (const int jj : {j, j % n})
+                  for (const int ii : {i, i % n}) {
+                    const double v = read.density(ii, jj, z);
+                    c.lo = std::min(c.lo, v);
+                    c.hi = std::max(c.hi, v);
+                    if (L.s_varies)
+                      c.sigma = std::max(c.sigma, std::sqrt(std::max(0.0, largest_eigenvalue(read.matrix(ii, jj, z)))));
+                  }
+        }
+    // Depth cells: runs of voxel intervals whose bounds stay narrow in every column.
+    const std::size_t row = static_cast<std::size_t>(m) * m;
+    L.faces.push_back(top);
+    for (int r0 = 0; r0 < nz;) {
+      std::vector<Run> run(row);
+      for (std::size_t c = 0; c < row; ++c) run[c].add(fine[r0 * row + c]);
+      int r1 = r0 + 1;
+      for (; r1 < nz; ++r1) {
+        std::vector<Run> wider = run;
+        bool narrow = true;
+        for (std::size_t c = 0; c < row; ++c) {
+          wider[c].add(fine[r1 * row + c]);
+          narrow = narrow && wider[c].narrow();
+        }
+        if (!narrow) break;
+        run = std::move(wider);
+      }
+      double row_hi = 0;
+      for (const Run& c : run) {
+        L.hi.push_back(c.all.hi * (L.s_varies ? c.all.sigma : 1.0) * (1 + kMargin));
+        L.lo.push_back(L.s_varies ? 0.0 : c.all.lo * (1 - kMargin));
+        row_hi = std::max(row_hi, L.hi.back());
+      }
+      L.row_hi.push_back(row_hi);
+      L.faces.push_back(r1 == nz ? bottom : bottom - (nz - r1) * hz);
+      r0 = r1;
+    }
+    out.push_back(std::move(L));
+    top = bottom;
+  }
+  return out;
+}
+
+}  // namespace mcref::volume

@@ -1,0 +1,54 @@
+#pragma once
+// Per-cell majorants of the extinction of an OpenVDB slab, for delta tracking
+// (Woodcock 1965) with a 3-D DDA over coarse cells (Amanatides & Woo 1987) in
+// sim/slab/free_flight.cpp.
+//
+// Extinction: sigma_t(x, w) = rho(x) sigma(w; S(x)), sigma(w; S) = sqrt(w^T S w)
+// (SpongeCake Eq. 3; sigma = 1 for non-SGGX layers). GridLookup reconstructs
+// rho and S trilinearly (BoxSampler) from the voxels at the corners of the
+// voxel cell around x: a convex combination of them, so in a voxel cell
+//   min_corners rho <= rho(x) <= max_corners rho,
+//   sigma(w; S(x))^2 = sum_i w_i w^T S_i w <= max_corners lambda_max(S_i).
+// The corner past the last column is read both as stored (column N) and wrapped
+// (column 0): the bounds hold whether or not the grid stores the periodic seam.
+//
+// Cells: laterally one per voxel column (m = lateral_voxels), or one for the
+// whole tile when the layer's density does not vary laterally (m = 1); in depth,
+// runs of voxel intervals, merged while in every column the run's bounds stay
+// within kMergeRange of each interval's own (a constant profile: one cell). Per cell:
+//  - hi: rho_max * sqrt(max lambda_max(S)) if the layer's S varies, else rho_max;
+//    the majorant along w is hi * factor(w), factor(w) = sigma(w; S) for an SGGX
+//    layer with one S everywhere (exact in direction), else 1;
+//  - lo: rho_min for layers whose S does not vary (0 otherwise): a tentative
+//    collision with u hi < lo is real whatever rho(x) is (no lookup needed).
+// hi and lo carry a relative margin of kMargin for the single-precision
+// interpolation of the density voxels.
+#include <vector>
+
+#include "models/core/vec.h"
+#include "models/sggx/sggx_distribution.h"
+
+namespace mcref::volume {
+
+class DensityGrids;
+
+inline constexpr double kMergeRange = 0.1;
+inline constexpr double kMargin = 1e-5;
+
+struct LayerMajorants {
+  int lateral = 1;                // m: cells per tile side
+  double cell_size = 1;           // tile / m
+  std::vector<double> faces;      // depths of the cell faces, top to bottom (cells + 1)
+  std::vector<double> hi, lo;     // per cell, index (depth_cell * m + j) * m + i
+  std::vector<double> row_hi;     // max of hi over each depth row of cells
+  bool one_s = false;             // SGGX layer with one S everywhere (s)
+  bool s_varies = false;          // SGGX layer whose S varies: look S up at collisions
+  sggx::Sggx s;
+  int depth_cells() const { return static_cast<int>(faces.size()) - 1; }
+  double factor(Vec3 w) const { return one_s ? sggx::projected_area(s, w) : 1.0; }
+};
+
+// The majorants of every layer of the grids (as they are when built).
+std::vector<LayerMajorants> build_majorants(const DensityGrids& grids);
+
+}  // namespace mcref::volume

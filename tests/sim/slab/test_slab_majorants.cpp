@@ -1,0 +1,198 @@
+// The per-cell majorants of the OpenVDB slab (sim/slab/majorant_grid.h)
+// against brute force: at random points of every cell (on its faces too, and
+// in lateral images of the tile) and random directions, the extinction
+// rho(x) sigma(w; S(x)) read through GridLookup stays at or below the cell's
+// majorant hi * factor(w), and rho(x) at or above its minorant lo. The voxels
+// are random, the stored periodic seam column included, and so is S in one
+// layer. Also: bit-identical tables for 1 and 2 threads on the grid path.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "models/core/rng.h"
+#include "models/core/warp.h"
+#include "sim/experiment/experiment.h"
+#include "sim/slab/density_grid.h"
+#include "sim/slab/medium.h"
+#include "tests/sim/slab/test_slab_helpers.h"
+
+using namespace mcref;
+
+namespace {
+
+const char* kGeometry = R"([geometry]
+kind = "slab"
+backend = "openvdb"
+tile = 2.0
+lateral_voxels = 5
+depth_voxels = 6
+[[geometry.layer]]
+phase = "sggx_fiber"
+alpha = 0.3
+orientation_deg = [60, 30]
+thickness = 0.5
+density = 3.0
+[[geometry.layer]]
+phase = "sggx_surface"
+alpha = 0.2
+orientation_deg = [20, 110]
+thickness = 1.0
+density = 1.5
+profile = "linear"
+profile_top = 0.3
+profile_bottom = 1.0
+[[geometry.layer]]
+phase = "isotropic"
+thickness = 0.7
+density = 2.0
+[[measure]]
+quantity = "brdf"
+theta_i_deg = [30]
+samples = 1
+)";
+
+// Layer 0: random density and random positive definite S per voxel; layer 1 as
+// built (linear profile, one S); layer 2: random density per voxel.
+std::unique_ptr<volume::DensityGrids> random_grids(const SlabGeometry& g, Rng& rng) {
+  auto grids = std::make_unique<volume::DensityGrids>(g);
+  const int n = g.grid.lateral_voxels, nz = g.grid.depth_voxels;
+  for (int k : {0, 2}) {
+    auto rho = grids->grids()[k]->getAccessor();
+    for (int z = 0; z <= nz; ++z)
+      for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) rho.setValue(openvdb::Coord(i, j, z), static_cast<float>(0.2 + 3 * rng.uniform()));
+  }
+  auto diag = grids->s_diag(0)->getAccessor();
+  auto off = grids->s_offdiag(0)->getAccessor();
+  for (int z = 0; z <= nz; ++z)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        double a[3][3];
+        for (auto& row : a)
+          for (double& v : row) v = 2 * rng.uniform() - 1;
+        double s[3][3];  // A A^T + 0.05 I
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c)
+            s[r][c] = a[r][0] * a[c][0] + a[r][1] * a[c][1] + a[r][2] * a[c][2] + (r == c ? 0.05 : 0.0);
+        diag.setValue(openvdb::Coord(i, j, z), openvdb::Vec3d(s[0][0], s[1][1], s[2][2]));
+        off.setValue(openvdb::Coord(i, j, z), openvdb::Vec3d(s[0][1], s[0][2], s[1][2]));
+      }
+  return grids;
+}
+
+// A coordinate in [lo, hi]: often on a face or within rounding of it.
+double in_range(double lo, double hi, Rng& rng) {
+  const double u = rng.uniform();
+  if (u < 0.1) return lo;
+  if (u < 0.2) return hi;
+  if (u < 0.3) return lo + (hi - lo) * 1e-12;
+  if (u < 0.4) return hi - (hi - lo) * 1e-12;
+  return lo + (hi - lo) * rng.uniform();
+}
+
+}  // namespace
+
+TEST(SlabMajorants, BoundTheExtinctionInEveryCell) {
+  const Experiment ex = parse_experiment(kGeometry, "m.toml");
+  const SlabGeometry& g = ex.slab;
+  Rng rng(2024);
+  const volume::SlabMedium medium(g, random_grids(g, rng));
+  const std::vector<volume::LayerMajorants>& maj = medium.majorants();
+  ASSERT_EQ(maj.size(), 3u);
+  EXPECT_TRUE(maj[0].s_varies);
+  EXPECT_TRUE(maj[1].one_s);
+  EXPECT_EQ(maj[1].lateral, 1);  // depth profile only
+  EXPECT_GT(maj[1].depth_cells(), 1);
+  EXPECT_EQ(maj[2].lateral, g.grid.lateral_voxels);
+  volume::GridLookup lookup(*medium.grids());
+  const double tile = g.grid.tile;
+  std::size_t samples = 0, over = 0, under = 0;
+  std::ostringstream first;
+  for (int k = 0; k < 3; ++k) {
+    const volume::LayerMajorants& M = maj[k];
+    const int m = M.lateral;
+    EXPECT_EQ(M.faces.front(), medium.layers()[k].top);
+    EXPECT_EQ(M.faces.back(), medium.layers()[k].bottom);
+    for (int cz = 0; cz < M.depth_cells(); ++cz)
+      for (int cj = 0; cj < m; ++cj)
+        for (int ci = 0; ci < m; ++ci) {
+          const std::size_t cell = (static_cast<std::size_t>(cz) * m + cj) * m + ci;
+          for (int s = 0; s < 400; ++s, ++samples) {
+            // A point of the cell, in the tile or one of its lateral images.
+            const double x = in_range(ci * M.cell_size, (ci + 1) * M.cell_size, rng) + tile * std::floor(7 * rng.uniform() - 3);
+            const double y = in_range(cj * M.cell_size, (cj + 1) * M.cell_size, rng) + tile * std::floor(7 * rng.uniform() - 3);
+            const double depth = in_range(M.faces[cz], M.faces[cz + 1], rng);
+            const double u1 = rng.uniform(), u2 = rng.uniform();
+            const Vec3 w = sample_uniform_sphere(u1, u2);
+            double rho = 0, sigma = 1;
+            if (k == 2) {
+              rho = lookup.density(k, x, y, depth);
+            } else {
+              sggx::Mat3 S;
+              rho = lookup.density_and_sggx(k, x, y, depth, S);
+              sigma = std::sqrt(sggx::quadratic_form(S, w));
+            }
+            const bool above = rho * sigma > M.hi[cell] * M.factor(w), below = !M.s_varies && rho < M.lo[cell];
+            if ((above || below) && over + under == 0)
+              first << "layer " << k << " cell " << cell << " at (" << x << ", " << y << ", " << depth << "): rho "
+                    << rho << " sigma " << sigma << " hi*factor " << M.hi[cell] * M.factor(w) << " lo " << M.lo[cell];
+            over += above;
+            under += below;
+          }
+        }
+  }
+  EXPECT_GT(samples, 10000u);
+  EXPECT_EQ(over, 0u) << first.str();
+  EXPECT_EQ(under, 0u) << first.str();
+}
+
+// The majorant of a cell is the bound of the field, not more: at its corners
+// the field reaches hi / (1 + kMargin) (layer 2: sigma = 1, random voxels, so
+// one cell per voxel cell). The last column's far corner is read both just
+// before the tile's edge (the stored seam column) and on it (wrapped: column 0).
+TEST(SlabMajorants, CellMajorantIsReachedInTheCell) {
+  const Experiment ex = parse_experiment(kGeometry, "m.toml");
+  Rng rng(7);
+  const volume::SlabMedium medium(ex.slab, random_grids(ex.slab, rng));
+  const volume::LayerMajorants& M = medium.majorants()[2];
+  volume::GridLookup lookup(*medium.grids());
+  const int m = M.lateral;
+  for (int cz = 0; cz < M.depth_cells(); ++cz)
+    for (int cj = 0; cj < m; ++cj)
+      for (int ci = 0; ci < m; ++ci) {
+        double best = 0;
+        for (double fx : {0.0, 1 - 1e-12, 1.0})
+          for (double fy : {0.0, 1 - 1e-12, 1.0})
+            for (double fz : {0.0, 1.0})
+              best = std::max(best, lookup.density(2, (ci + fx) * M.cell_size, (cj + fy) * M.cell_size,
+                                                   M.faces[cz] + fz * (M.faces[cz + 1] - M.faces[cz])));
+        const std::size_t cell = (static_cast<std::size_t>(cz) * m + cj) * m + ci;
+        EXPECT_NEAR(best * (1 + volume::kMargin), M.hi[cell], 1e-6 * M.hi[cell]) << "cell " << cell;
+      }
+}
+
+TEST(SlabMajorants, GridPathBitIdenticalForOneAndTwoThreads) {
+  const Experiment ex = parse_experiment(R"([geometry]
+kind = "slab"
+backend = "openvdb"
+depth_voxels = 8
+[[geometry.layer]]
+phase = "sggx_surface"
+alpha = 0.5
+thickness = 1.0
+density = 3.0
+profile = "linear"
+profile_top = 0.5
+profile_bottom = 1.5
+albedo = [0.9, 0.8, 0.7]
+[run]
+seed = 9
+batches = 3
+[[measure]]
+quantity = "brdf"
+theta_i_deg = [30]
+samples = 20000
+)", "test.toml");
+  slab_test::expect_bit_identical_threads(ex);
+}
