@@ -34,6 +34,7 @@ py::dict provenance_dict(const Provenance& p) {
   py::dict d;
   d["mcref_version"] = p.mcref_version;
   d["git_commit"] = p.git_commit;
+  d["sim_fingerprint"] = p.sim_fingerprint;
   d["created"] = p.created;
   d["command_line"] = p.command_line;
   d["config"] = p.config;

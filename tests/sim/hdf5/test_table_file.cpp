@@ -86,6 +86,7 @@ TableFile sample_file() {
   TableFile f;
   f.provenance.mcref_version = "9.8.7";
   f.provenance.git_commit = "0123456789ab";
+  f.provenance.sim_fingerprint = "00112233aabbccdd";
   f.provenance.created = "2024-01-02T03:04:05Z";
   f.provenance.command_line = "mcref simulate exp.toml -o out.h5 --set geometry.tau0=0.3";
   f.provenance.config = "[geometry]\nkind = \"micrograin\"\ntau0 = 0.5 # τ0, unicode\n";
@@ -146,6 +147,7 @@ TEST_F(TableFileTest, RoundTripKeepsTablesAxesAttributesAndProvenance) {
   const TableFile r = read_table_file(p);
   EXPECT_EQ(r.provenance.mcref_version, f.provenance.mcref_version);
   EXPECT_EQ(r.provenance.git_commit, f.provenance.git_commit);
+  EXPECT_EQ(r.provenance.sim_fingerprint, f.provenance.sim_fingerprint);
   EXPECT_EQ(r.provenance.created, f.provenance.created);
   EXPECT_EQ(r.provenance.command_line, f.provenance.command_line);
   EXPECT_EQ(r.provenance.config, f.provenance.config);
@@ -164,13 +166,13 @@ TEST_F(TableFileTest, RoundTripKeepsTablesAxesAttributesAndProvenance) {
 }
 
 // The on-disk layout DESIGN.md promises, checked with the bare HDF5 C API.
-TEST_F(TableFileTest, LayoutHasValueStderrScalesEdgesAndRootAttributes) {
+TEST_F(TableFileTest, LayoutHasValueStderrScalesBoundsAndRootAttributes) {
   const TableFile f = sample_file();
   const std::string p = path("layout.h5");
   write_table_file(p, f);
   const hid_t file = H5Fopen(p.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   ASSERT_GE(file, 0);
-  for (const char* a : {"mcref_format", "format_version", "mcref_version", "git_commit", "created", "command_line",
+  for (const char* a : {"mcref_format", "format_version", "mcref_version", "git_commit", "sim_fingerprint", "created", "command_line",
                         "seed", "config", "source_file", "conventions"})
     EXPECT_GT(H5Aexists(file, a), 0) << "root attribute " << a;
   const Table& t = f.tables[0];  // vndf: points x bins x bins
