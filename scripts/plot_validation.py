@@ -51,7 +51,7 @@ def load_table(group):
     axes = []
     for n in names.split(","):
         ds = group[n]
-        unit = ds.attrs.get("unit", "")
+        unit = ds.attrs.get("units", ds.attrs.get("unit", ""))  # "unit": files before the CF names
         unit = unit.decode() if isinstance(unit, bytes) else unit
         axes.append((n, np.asarray(ds), unit))
     return axes, np.asarray(group["value"]), np.asarray(group["stderr"])

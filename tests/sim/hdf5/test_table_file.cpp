@@ -16,6 +16,7 @@
 #include "models/core/rng.h"
 #include "models/core/vec.h"
 #include "sim/experiment/config_error.h"
+#include "sim/hdf5/h5_util.h"
 #include "sim/hdf5/table_file.h"
 #include "sim/tally/azimuth_bins.h"
 #include "sim/tally/table.h"
@@ -204,13 +205,24 @@ TEST_F(TableFileTest, LayoutHasValueStderrScalesBoundsAndRootAttributes) {
     const std::vector<double> pts = read_doubles(g, t.axes[d].name);
     ASSERT_EQ(pts.size(), t.axes[d].size());
     for (std::size_t i = 0; i < pts.size(); ++i) EXPECT_DOUBLE_EQ(pts[i], t.axes[d].centre(i));
+    // CF: units on the axis; bounds = "<axis>_bounds", an (n, 2) array, on binned axes.
+    EXPECT_EQ(h5::read_string_attr(scale, "units"), t.axes[d].unit);
+    const std::string bounds = t.axes[d].name + "_bounds";
+    if (t.axes[d].kind == Axis::Kind::Bins) {
+      EXPECT_EQ(h5::read_string_attr(scale, "bounds"), bounds);
+      const std::vector<double> b = read_doubles(g, bounds);
+      ASSERT_EQ(b.size(), 2 * t.axes[d].size()) << bounds;
+      for (std::size_t i = 0; i < t.axes[d].size(); ++i) {
+        EXPECT_EQ(b[2 * i], t.axes[d].values[i]) << bounds;
+        EXPECT_EQ(b[2 * i + 1], t.axes[d].values[i + 1]) << bounds;
+      }
+    } else {
+      EXPECT_FALSE(h5::has_attr(scale, "bounds")) << t.axes[d].name;
+      EXPECT_LE(H5Lexists(g, bounds.c_str(), H5P_DEFAULT), 0) << bounds << " on a points axis";
+    }
     H5Dclose(scale);
-    const std::string edges = t.axes[d].name + "_edges";
-    if (t.axes[d].kind == Axis::Kind::Bins)
-      EXPECT_EQ(read_doubles(g, edges), t.axes[d].values) << edges;
-    else
-      EXPECT_LE(H5Lexists(g, edges.c_str(), H5P_DEFAULT), 0) << edges << " on a points axis";
   }
+  EXPECT_EQ(h5::read_string_attr(ds, "units"), t.units);
   H5Sclose(sp);
   H5Dclose(ds);
   H5Gclose(g);
