@@ -6,6 +6,7 @@ PACKAGES=(
   libembree-dev libopenvdb-dev libboost-iostreams-dev libtbb-dev
   libhdf5-dev libtomlplusplus-dev libgtest-dev libbenchmark-dev
   python3-matplotlib python3-h5py python3-numpy python3-jinja2
+  python3-xarray python3-h5netcdf python3-openvdb
   chromium
   pybind11-dev python3-pybind11 python3-pytest
   libopenmpi-dev openmpi-bin

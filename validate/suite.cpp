@@ -99,14 +99,17 @@ Suite load_suite_at_depth(const std::string& path, int depth) {
   return s;
 }
 
-// Cached tables are current when they come from the same configuration, the
-// same mcref version and the same clean commit (a "-dirty" or unknown build
-// never reuses: its code cannot be identified), and hold every checked table.
+// Cached tables are current when the build that simulated them had this
+// build's simulation fingerprint (scripts/sim_fingerprint.cmake: the sources
+// sim/ reaches, the mcref version, compiler, flags and library versions) and
+// the same effective configuration (seed included), and they hold every
+// checked table. The commit is not compared: a change to validate/, to the
+// analytic models only validate uses, or to the report, committed or not, keeps
+// the tables; a file without a fingerprint (older mcref) is simulated again.
 bool cache_is_current(const TableFile& cached, const Experiment& ex, const Case& c) {
-  const std::string commit = mcref_git_commit();
-  const bool clean = commit != "unknown" && commit.find("-dirty") == std::string::npos;
-  if (!clean || cached.provenance.git_commit != commit || cached.provenance.mcref_version != mcref_version() ||
-      cached.provenance.config != ex.text)
+  const Provenance& p = cached.provenance;
+  if (p.sim_fingerprint.empty() || p.sim_fingerprint != mcref_sim_fingerprint() || p.config != ex.text ||
+      p.seed != ex.run.seed)
     return false;
   for (const Check& chk : c.checks)
     if (!cached.find(chk.table)) return false;

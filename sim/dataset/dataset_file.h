@@ -20,7 +20,7 @@
 //   /entries/<index>/       attributes index, seed, assignments, config (the entry's
 //                           effective experiment); one group per table in the
 //                           layout of sim/hdf5/table_file.h (value, stderr, sum,
-//                           sum_sq, axes as dimension scales, <axis>_edges); in
+//                           sum_sq, axes as dimension scales, <axis>_bounds); in
 //                           lean files value and stderr only, as float32
 //                           (sim/hdf5/table_group.h): such files cannot be merged
 //                           or resumed, entry() refuses them

@@ -138,7 +138,7 @@ void write_int64s(hid_t parent, const std::string& name, const std::vector<std::
   if (n) check(H5Dwrite(ds, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()), "writing " + name);
 }
 
-void write_strings(hid_t parent, const std::string& name, const std::vector<std::string>& data) {
+Handle write_strings(hid_t parent, const std::string& name, const std::vector<std::string>& data) {
   const hsize_t n = data.size();
   Handle type = string_type();
   Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose);
@@ -148,6 +148,7 @@ void write_strings(hid_t parent, const std::string& name, const std::vector<std:
   std::vector<const char*> p;
   for (const std::string& s : data) p.push_back(s.c_str());
   if (n) check(H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, p.data()), "writing " + name);
+  return ds;
 }
 
 namespace {

@@ -58,7 +58,7 @@ Handle write_doubles(hid_t parent, const std::string& name, const std::vector<hs
 Handle write_floats(hid_t parent, const std::string& name, const std::vector<hsize_t>& dims,
                     const std::vector<double>& data, int compression = 0);
 void write_int64s(hid_t parent, const std::string& name, const std::vector<std::int64_t>& data);
-void write_strings(hid_t parent, const std::string& name, const std::vector<std::string>& data);
+Handle write_strings(hid_t parent, const std::string& name, const std::vector<std::string>& data);
 std::vector<double> read_doubles(hid_t parent, const std::string& name);
 std::vector<std::int64_t> read_int64s(hid_t parent, const std::string& name);
 std::vector<std::string> read_strings(hid_t parent, const std::string& name);

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "mcref_commit.h"  // generated at build time
+#include "mcref_sim_fingerprint.h"  // generated at build time
 #include "sim/experiment/config_error.h"
 #include "sim/files/temp_file.h"
 #include "sim/hdf5/file_seal.h"
@@ -51,12 +52,14 @@ const char* table_conventions() {
 
 std::string mcref_version() { return MCREF_VERSION; }
 std::string mcref_git_commit() { return MCREF_GIT_COMMIT; }
+std::string mcref_sim_fingerprint() { return MCREF_SIM_FINGERPRINT; }
 
 Provenance make_provenance(const std::string& config_text, const std::string& source_file, std::uint64_t seed,
                            const std::string& command_line) {
   Provenance p;
   p.mcref_version = mcref_version();
   p.git_commit = mcref_git_commit();
+  p.sim_fingerprint = mcref_sim_fingerprint();
   char buf[64];
   // SOURCE_DATE_EPOCH (the reproducible-builds convention) fixes the date, so
   // that two runs can be compared byte for byte.
@@ -83,6 +86,7 @@ void write_table_file(const std::string& path, const TableFile& f) {
     h5::write_int_attr(root, "format_version", kFormatVersion);
     h5::write_string_attr(root, "mcref_version", f.provenance.mcref_version);
     h5::write_string_attr(root, "git_commit", f.provenance.git_commit);
+    h5::write_string_attr(root, "sim_fingerprint", f.provenance.sim_fingerprint);
     h5::write_string_attr(root, "created", f.provenance.created);
     h5::write_string_attr(root, "command_line", f.provenance.command_line);
     h5::write_int_attr(root, "seed", static_cast<std::int64_t>(f.provenance.seed));
@@ -119,6 +123,7 @@ TableFile read_table_file(const std::string& path) {
       throw ConfigError(path, "format_version", "is " + std::to_string(version) + "; this mcref reads version 1");
     f.provenance.mcref_version = h5::read_string_attr(root, "mcref_version");
     f.provenance.git_commit = h5::read_string_attr(root, "git_commit");
+    if (h5::has_attr(root, "sim_fingerprint")) f.provenance.sim_fingerprint = h5::read_string_attr(root, "sim_fingerprint");
     f.provenance.created = h5::read_string_attr(root, "created");
     f.provenance.command_line = h5::read_string_attr(root, "command_line");
     f.provenance.seed = static_cast<std::uint64_t>(h5::read_int_attr(root, "seed"));

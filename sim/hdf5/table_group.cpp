@@ -13,6 +13,31 @@ namespace mcref {
 
 namespace {
 const std::set<std::string> kReservedAttrs{"quantity", "units", "description", "batches", "axes", "storage"};
+
+// netCDF-4's name for a dimension without a coordinate variable (bnds below).
+const char* const kBoundsDimension = "This is a netCDF dimension but not a netCDF variable.         2";
+
+// Bin edges from CF bounds (n x 2, lower and upper per bin); the bins must be contiguous.
+std::vector<double> edges_from_bounds(const std::vector<double>& b, const std::string& name) {
+  if (b.size() < 2 || b.size() % 2) throw std::runtime_error(name + " is not an (n, 2) array");
+  std::vector<double> edges;
+  for (std::size_t i = 0; i < b.size(); i += 2) {
+    if (i > 0 && b[i] != b[i - 1]) throw std::runtime_error(name + ": the bins are not contiguous");
+    edges.push_back(b[i]);
+  }
+  edges.push_back(b.back());
+  return edges;
+}
+}  // namespace
+
+std::vector<std::string> axis_labels(const Table& t, const Axis& a) {
+  if (a.name == "channel" && a.size() == 3) return {"R", "G", "B"};
+  const auto names = t.attributes.find("components");
+  if (a.name != "component" || names == t.attributes.end()) return {};
+  std::vector<std::string> out;
+  std::stringstream ss(names->second);
+  for (std::string n; std::getline(ss, n, ',');) out.push_back(n);
+  return out.size() == a.size() ? out : std::vector<std::string>{};
 }
 
 void write_table_group(hid_t parent, const Table& t, int compression, bool lean) {
@@ -38,19 +63,44 @@ void write_table_group(hid_t parent, const Table& t, int compression, bool lean)
     data.push_back(h5::write_doubles(group, "sum", dims, t.sum, compression));
     data.push_back(h5::write_doubles(group, "sum_sq", dims, t.sum_sq, compression));
   }
+  // CF names: units and long_name on the data, auxiliary label coordinates.
+  std::string labelled;
+  for (const Axis& a : t.axes)
+    if (!axis_labels(t, a).empty()) labelled += (labelled.empty() ? "" : " ") + a.name + "_label";
+  const char* long_names[] = {"mean over batches", "standard error of the mean", "sum over batches",
+                              "sum of squares over batches"};
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    h5::write_string_attr(data[i], "long_name", std::string(long_names[i]) + " of " + t.quantity);
+    if (i < 3) h5::write_string_attr(data[i], "units", t.units);  // (sum_sq: the square of units)
+    if (!labelled.empty()) h5::write_string_attr(data[i], "coordinates", labelled);
+  }
+  // The size-2 dimension of the bounds, in groups with a binned axis.
+  bool binned = false;
+  for (const Axis& a : t.axes) binned = binned || a.kind == Axis::Kind::Bins;
+  h5::Handle bnds = binned ? h5::write_doubles(group, "bnds", {2}, {0, 1}) : h5::Handle(-1, H5Dclose);
+  if (binned) h5::check(H5DSset_scale(bnds, kBoundsDimension), "making the bounds dimension");
   for (std::size_t d = 0; d < t.axes.size(); ++d) {
     const Axis& a = t.axes[d];
     std::vector<double> pts(a.size());
     for (std::size_t i = 0; i < a.size(); ++i) pts[i] = a.centre(i);
     h5::Handle scale = h5::write_doubles(group, a.name, {a.size()}, pts);
-    h5::write_string_attr(scale, "unit", a.unit);
-    h5::write_string_attr(scale, "kind", a.kind == Axis::Kind::Bins ? "bin centres" : "points");
+    h5::write_string_attr(scale, "units", a.unit);
     h5::check(H5DSset_scale(scale, a.name.c_str()), "making a dimension scale");
     for (const h5::Handle& ds : data)
       h5::check(H5DSattach_scale(ds, scale, static_cast<unsigned>(d)), "attaching a scale");
     if (a.kind == Axis::Kind::Bins) {
-      h5::Handle edges = h5::write_doubles(group, a.name + "_edges", {a.values.size()}, a.values);
-      h5::write_string_attr(edges, "unit", a.unit);
+      std::vector<double> b;
+      for (std::size_t i = 0; i < a.size(); ++i) b.insert(b.end(), {a.lower(i), a.upper(i)});
+      h5::Handle bounds = h5::write_doubles(group, a.name + "_bounds", {a.size(), 2}, b);
+      h5::write_string_attr(bounds, "units", a.unit);
+      h5::write_string_attr(scale, "bounds", a.name + "_bounds");
+      h5::check(H5DSattach_scale(bounds, scale, 0), "attaching a scale");
+      h5::check(H5DSattach_scale(bounds, bnds, 1), "attaching a scale");
+    }
+    const std::vector<std::string> labels = axis_labels(t, a);
+    if (!labels.empty()) {
+      h5::Handle label = h5::write_strings(group, a.name + "_label", labels);
+      h5::check(H5DSattach_scale(label, scale, 0), "attaching a scale");
     }
   }
 }
@@ -73,8 +123,11 @@ Table read_table_group(hid_t parent, const std::string& name) {
   for (std::string a; std::getline(ss, a, ',');) {
     h5::Handle scale(H5Dopen2(group, a.c_str(), H5P_DEFAULT), H5Dclose);
     if (!scale.valid()) throw std::runtime_error("missing axis " + a);
-    const std::string unit = h5::read_string_attr(scale, "unit");
-    if (h5::exists(group, a + "_edges"))
+    // ("unit" and "<axis>_edges": files from before the CF names)
+    const std::string unit = h5::read_string_attr(scale, h5::has_attr(scale, "units") ? "units" : "unit");
+    if (h5::exists(group, a + "_bounds"))
+      axes.push_back(Axis::bins(a, unit, edges_from_bounds(h5::read_doubles(group, a + "_bounds"), a + "_bounds")));
+    else if (h5::exists(group, a + "_edges"))
       axes.push_back(Axis::bins(a, unit, h5::read_doubles(group, a + "_edges")));
     else
       axes.push_back(Axis::points(a, unit, h5::read_doubles(group, a)));

@@ -2,7 +2,9 @@
 // One Table as an HDF5 group, in the layout of sim/hdf5/table_file.h:
 //   <group>/value, stderr, sum, sum_sq  (N-d float64), attributes quantity,
 //   units, description, batches, axes and the table's notes; one dimension
-//   scale per axis (bin centres or points) and <axis>_edges for binned axes.
+//   scale per axis (bin centres or points) and <axis>_bounds for binned axes,
+//   with the netCDF-CF names xarray and netCDF tools read (table_file.h).
+// Files from before the CF names (<axis>_edges, attribute unit) still read.
 // Written without time tracking (see h5_util.h), optionally gzip-compressed.
 //
 // Lean storage (paper-scale datasets that will not be merged further): value
@@ -12,6 +14,7 @@
 #include <hdf5.h>
 
 #include <string>
+#include <vector>
 
 #include "sim/tally/table.h"
 
@@ -21,5 +24,9 @@ void write_table_group(hid_t parent, const Table& table, int compression, bool l
 // The group's storage attribute: "lean", or "full" when absent.
 std::string table_group_storage(hid_t parent, const std::string& name);
 Table read_table_group(hid_t parent, const std::string& name);
+// Text labels of an index axis, stored as the auxiliary coordinate
+// "<axis>_label": R, G, B for the channel axis, the table's `components`
+// attribute for the component axis; empty for other axes.
+std::vector<std::string> axis_labels(const Table& t, const Axis& a);
 
 }  // namespace mcref

@@ -5,9 +5,6 @@
 #include <mutex>
 
 #include "models/sggx/sggx_distribution.h"
-#include "sim/files/vdb_file.h"
-
-#include <openvdb/io/File.h>
 
 namespace mcref::volume {
 
@@ -206,12 +203,6 @@ double GridLookup::density_and_sggx(int k, double x, double y, double depth, sgg
   const openvdb::Vec3R ijk = index(k, x, y, depth);
   s = matrix_at(k, ijk);
   return openvdb::tools::BoxSampler::sample(acc_[k], ijk);
-}
-
-void write_vdb(const std::string& path, const DensityGrids& g) {
-  init_openvdb();
-  const openvdb::GridPtrVec grids = g.all_grids();
-  write_vdb_file(path, openvdb::GridCPtrVec(grids.begin(), grids.end()));
 }
 
 }  // namespace mcref::volume

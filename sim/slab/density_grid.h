@@ -84,8 +84,4 @@ class GridLookup {
 // Largest eigenvalue of a symmetric 3x3 matrix (Jacobi rotations).
 double largest_eigenvalue(const sggx::Mat3& s);
 
-// Writes the grids (names "layer<k>_density", "layer<k>_S_diag",
-// "layer<k>_S_offdiag", with the layer's parameters as grid metadata) to a .vdb file.
-void write_vdb(const std::string& path, const DensityGrids& grids);
-
 }  // namespace mcref::volume

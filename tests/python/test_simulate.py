@@ -163,7 +163,9 @@ def test_to_xarray():
     assert isinstance(ds, xr.Dataset)
     assert np.array_equal(ds["value"].values, t.value) and np.array_equal(ds["sum_sq"].values, t.sum_sq)
     assert list(ds["value"].dims) == t.axis_names
-    assert np.array_equal(ds["theta_m_edges"].values, t.axis("theta_m").edges)
+    edges = t.axis("theta_m").edges
+    assert ds["theta_m"].attrs == {"units": "rad", "bounds": "theta_m_bounds"}
+    assert np.array_equal(ds["theta_m_bounds"].values, np.stack([edges[:-1], edges[1:]], axis=1))
 
 
 def test_a_path_given_as_text_is_pointed_to_simulate_file():

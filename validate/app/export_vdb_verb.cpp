@@ -10,6 +10,7 @@
 #include "sim/files/output_path.h"
 #include "sim/micrograin/micrograin_vdb.h"
 #include "sim/slab/density_grid.h"
+#include "sim/slab/slab_vdb.h"
 #include "validate/app/verbs.h"
 
 namespace mcref::cli {
@@ -20,9 +21,10 @@ const char* kHelp =
     "\n"
     "Slab experiments (kind = \"slab\"): every layer's density grid, an OpenVDB fog\n"
     "volume named layer<k>_density: a periodic lateral tile of side geometry.tile\n"
-    "(geometry.lateral_voxels per side), geometry.depth_voxels voxel intervals per\n"
-    "layer in depth, the stack's top face at z = 0, layers below it. SGGX layers add\n"
-    "their matrix field S on the same voxels as two Vec3d grids, layer<k>_S_diag =\n"
+    "(geometry.lateral_voxels voxels per side, the seam stored once: voxel i = N\n"
+    "would repeat i = 0), geometry.depth_voxels + 1 voxel planes per layer in depth,\n"
+    "the stack's top face at z = 0, layers below it. SGGX layers add their matrix\n"
+    "field S on the same voxels as two Vec3s (float32) grids, layer<k>_S_diag =\n"
     "(S_xx, S_yy, S_zz) and layer<k>_S_offdiag = (S_xy, S_xz, S_yz). The layer's\n"
     "parameters (phase, alpha, orientation, albedo, f0) are grid metadata. The grids\n"
     "are built whatever geometry.backend says.\n"

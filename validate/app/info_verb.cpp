@@ -19,9 +19,10 @@ int info(const std::vector<std::string>& raw) {
   if (a.positional.size() != 1) throw ConfigError("command line", "", "mcref info needs exactly one TABLES.h5");
   const TableFile f = read_table_file(a.positional[0]);
   const Provenance& p = f.provenance;
-  std::printf("%s\n  mcref %s (commit %s), created %s, seed %llu\n  command: %s\n  source: %s\n",
+  std::printf("%s\n  mcref %s (commit %s), created %s, seed %llu\n  simulation fingerprint: %s\n  command: %s\n  source: %s\n",
               a.positional[0].c_str(), p.mcref_version.c_str(), p.git_commit.c_str(), p.created.c_str(),
-              static_cast<unsigned long long>(p.seed), p.command_line.c_str(), p.source_file.c_str());
+              static_cast<unsigned long long>(p.seed), p.sim_fingerprint.empty() ? "none (an older mcref)" : p.sim_fingerprint.c_str(),
+              p.command_line.c_str(), p.source_file.c_str());
   for (const Table& t : f.tables) {
     std::ostringstream axes;
     for (const Axis& ax : t.axes) {

@@ -6,6 +6,7 @@
 #include "sim/experiment/config_error.h"
 #include "sim/files/output_path.h"
 #include "sim/hdf5/table_file.h"
+#include "sim/hdf5/table_group.h"
 #include "validate/python/bindings.h"
 
 namespace mcref::python {
@@ -34,6 +35,7 @@ py::dict provenance_dict(const Provenance& p) {
   py::dict d;
   d["mcref_version"] = p.mcref_version;
   d["git_commit"] = p.git_commit;
+  d["sim_fingerprint"] = p.sim_fingerprint;
   d["created"] = p.created;
   d["command_line"] = p.command_line;
   d["config"] = p.config;
@@ -125,15 +127,26 @@ void bind_tables(py::module_& m) {
           dims.append(a.name);
           std::vector<double> c(a.size());
           for (std::size_t i = 0; i < c.size(); ++i) c[i] = a.centre(i);
-          coords[py::str(a.name)] = py::make_tuple(a.name, py::array_t<double>(c.size(), c.data()),
-                                                  py::dict(py::arg("unit") = a.unit));
-          if (a.kind == Axis::Kind::Bins)
-            coords[py::str(a.name + "_edges")] = py::array_t<double>(a.values.size(), a.values.data());
+          // The netCDF-CF names of the file (sim/hdf5/table_file.h).
+          py::dict axis_attrs(py::arg("units") = a.unit);
+          if (a.kind == Axis::Kind::Bins) {
+            axis_attrs["bounds"] = a.name + "_bounds";
+            py::array_t<double> b({a.size(), std::size_t{2}});
+            for (std::size_t i = 0; i < a.size(); ++i) {
+              b.mutable_at(i, 0) = a.lower(i);
+              b.mutable_at(i, 1) = a.upper(i);
+            }
+            coords[py::str(a.name + "_bounds")] = py::make_tuple(py::make_tuple(a.name, "bnds"), b, py::dict(py::arg("units") = a.unit));
+          }
+          coords[py::str(a.name)] = py::make_tuple(a.name, py::array_t<double>(c.size(), c.data()), axis_attrs);
+          const std::vector<std::string> labels = axis_labels(t, a);
+          if (!labels.empty()) coords[py::str(a.name + "_label")] = py::make_tuple(a.name, labels);
         }
         py::tuple d = py::tuple(dims);
-        data["value"] = py::make_tuple(d, shaped(t, t.values()));
-        data["stderr"] = py::make_tuple(d, shaped(t, t.stderrs()));
-        data["sum"] = py::make_tuple(d, shaped(t, t.sum));
+        const py::dict units(py::arg("units") = t.units);
+        data["value"] = py::make_tuple(d, shaped(t, t.values()), units);
+        data["stderr"] = py::make_tuple(d, shaped(t, t.stderrs()), units);
+        data["sum"] = py::make_tuple(d, shaped(t, t.sum), units);
         data["sum_sq"] = py::make_tuple(d, shaped(t, t.sum_sq));
         attrs["name"] = t.name;
         attrs["quantity"] = t.quantity;

@@ -16,6 +16,7 @@
 #include "models/core/rng.h"
 #include "models/core/vec.h"
 #include "sim/experiment/config_error.h"
+#include "sim/hdf5/h5_util.h"
 #include "sim/hdf5/table_file.h"
 #include "sim/tally/azimuth_bins.h"
 #include "sim/tally/table.h"
@@ -86,6 +87,7 @@ TableFile sample_file() {
   TableFile f;
   f.provenance.mcref_version = "9.8.7";
   f.provenance.git_commit = "0123456789ab";
+  f.provenance.sim_fingerprint = "00112233aabbccdd";
   f.provenance.created = "2024-01-02T03:04:05Z";
   f.provenance.command_line = "mcref simulate exp.toml -o out.h5 --set geometry.tau0=0.3";
   f.provenance.config = "[geometry]\nkind = \"micrograin\"\ntau0 = 0.5 # τ0, unicode\n";
@@ -146,6 +148,7 @@ TEST_F(TableFileTest, RoundTripKeepsTablesAxesAttributesAndProvenance) {
   const TableFile r = read_table_file(p);
   EXPECT_EQ(r.provenance.mcref_version, f.provenance.mcref_version);
   EXPECT_EQ(r.provenance.git_commit, f.provenance.git_commit);
+  EXPECT_EQ(r.provenance.sim_fingerprint, f.provenance.sim_fingerprint);
   EXPECT_EQ(r.provenance.created, f.provenance.created);
   EXPECT_EQ(r.provenance.command_line, f.provenance.command_line);
   EXPECT_EQ(r.provenance.config, f.provenance.config);
@@ -164,13 +167,13 @@ TEST_F(TableFileTest, RoundTripKeepsTablesAxesAttributesAndProvenance) {
 }
 
 // The on-disk layout DESIGN.md promises, checked with the bare HDF5 C API.
-TEST_F(TableFileTest, LayoutHasValueStderrScalesEdgesAndRootAttributes) {
+TEST_F(TableFileTest, LayoutHasValueStderrScalesBoundsAndRootAttributes) {
   const TableFile f = sample_file();
   const std::string p = path("layout.h5");
   write_table_file(p, f);
   const hid_t file = H5Fopen(p.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   ASSERT_GE(file, 0);
-  for (const char* a : {"mcref_format", "format_version", "mcref_version", "git_commit", "created", "command_line",
+  for (const char* a : {"mcref_format", "format_version", "mcref_version", "git_commit", "sim_fingerprint", "created", "command_line",
                         "seed", "config", "source_file", "conventions"})
     EXPECT_GT(H5Aexists(file, a), 0) << "root attribute " << a;
   const Table& t = f.tables[0];  // vndf: points x bins x bins
@@ -202,13 +205,24 @@ TEST_F(TableFileTest, LayoutHasValueStderrScalesEdgesAndRootAttributes) {
     const std::vector<double> pts = read_doubles(g, t.axes[d].name);
     ASSERT_EQ(pts.size(), t.axes[d].size());
     for (std::size_t i = 0; i < pts.size(); ++i) EXPECT_DOUBLE_EQ(pts[i], t.axes[d].centre(i));
+    // CF: units on the axis; bounds = "<axis>_bounds", an (n, 2) array, on binned axes.
+    EXPECT_EQ(h5::read_string_attr(scale, "units"), t.axes[d].unit);
+    const std::string bounds = t.axes[d].name + "_bounds";
+    if (t.axes[d].kind == Axis::Kind::Bins) {
+      EXPECT_EQ(h5::read_string_attr(scale, "bounds"), bounds);
+      const std::vector<double> b = read_doubles(g, bounds);
+      ASSERT_EQ(b.size(), 2 * t.axes[d].size()) << bounds;
+      for (std::size_t i = 0; i < t.axes[d].size(); ++i) {
+        EXPECT_EQ(b[2 * i], t.axes[d].values[i]) << bounds;
+        EXPECT_EQ(b[2 * i + 1], t.axes[d].values[i + 1]) << bounds;
+      }
+    } else {
+      EXPECT_FALSE(h5::has_attr(scale, "bounds")) << t.axes[d].name;
+      EXPECT_LE(H5Lexists(g, bounds.c_str(), H5P_DEFAULT), 0) << bounds << " on a points axis";
+    }
     H5Dclose(scale);
-    const std::string edges = t.axes[d].name + "_edges";
-    if (t.axes[d].kind == Axis::Kind::Bins)
-      EXPECT_EQ(read_doubles(g, edges), t.axes[d].values) << edges;
-    else
-      EXPECT_LE(H5Lexists(g, edges.c_str(), H5P_DEFAULT), 0) << edges << " on a points axis";
   }
+  EXPECT_EQ(h5::read_string_attr(ds, "units"), t.units);
   H5Sclose(sp);
   H5Dclose(ds);
   H5Gclose(g);

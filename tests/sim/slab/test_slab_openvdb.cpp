@@ -11,6 +11,7 @@
 #include "models/core/rng.h"
 #include "models/sggx/sggx_distribution.h"
 #include "sim/slab/density_grid.h"
+#include "sim/slab/slab_vdb.h"
 #include "tests/sim/slab/test_slab_helpers.h"
 
 using namespace mcref;
@@ -174,11 +175,14 @@ albedo = 0.8
   slab_test::expect_exact(t, "brdf_btdf_order1_volume", "spongecake_ss_btdf", ex);
 }
 
-// export-vdb's writer: the grids read back through OpenVDB with their values
-// (per SGGX layer: density, S_diag, S_offdiag).
+// export-vdb's writer: the grids read back through OpenVDB with the values of
+// the simulation's grids (per SGGX layer: density, S_diag, S_offdiag), as
+// FloatGrid and Vec3SGrid (the types pyopenvdb reads), with the periodic seam
+// once: N x N voxels laterally, not N + 1.
 TEST(SlabOpenVdb, WrittenGridsReadBack) {
   const Experiment ex = parse_experiment(std::string("[geometry]\nkind = \"slab\"\n") + kLayer + kTiltedLayers + kRun, "w.toml");
   const volume::DensityGrids grids(ex.slab);
+  const int n = ex.slab.grid.lateral_voxels, nz = ex.slab.grid.depth_voxels;
   const std::string path = ::testing::TempDir() + "slab_test.vdb";
   volume::write_vdb(path, grids);
   openvdb::io::File file(path);
@@ -187,20 +191,28 @@ TEST(SlabOpenVdb, WrittenGridsReadBack) {
   file.close();
   ASSERT_EQ(read->size(), 9u);
   std::map<std::string, openvdb::GridBase::Ptr> by_name;
-  for (const auto& g : *read) by_name[g->getName()] = g;
+  for (const auto& g : *read) {
+    by_name[g->getName()] = g;
+    EXPECT_EQ(g->evalActiveVoxelBoundingBox(), openvdb::CoordBBox(openvdb::Coord(0, 0, 0), openvdb::Coord(n - 1, n - 1, nz)))
+        << g->getName();
+  }
   const auto g = openvdb::gridPtrCast<openvdb::FloatGrid>(by_name["layer1_density"]);
   ASSERT_TRUE(g);
   EXPECT_FLOAT_EQ(g->tree().getValue(openvdb::Coord(1, 2, 3)), 3.0f);
   EXPECT_EQ(g->metaValue<std::string>("phase"), "sggx_fiber");
-  // The S grids of the tilted fibre layer hold its S, as written.
+  // The S grids of the tilted fibre layer hold its S, rounded to float.
   const sggx::Mat3 S = layer_s(ex.slab.layers[1]);
-  const auto d = openvdb::gridPtrCast<openvdb::Vec3DGrid>(by_name["layer1_S_diag"]);
-  const auto o = openvdb::gridPtrCast<openvdb::Vec3DGrid>(by_name["layer1_S_offdiag"]);
+  const auto d = openvdb::gridPtrCast<openvdb::Vec3SGrid>(by_name["layer1_S_diag"]);
+  const auto o = openvdb::gridPtrCast<openvdb::Vec3SGrid>(by_name["layer1_S_offdiag"]);
   ASSERT_TRUE(d && o);
-  const openvdb::Coord c(2, 0, 5);
-  EXPECT_EQ(d->tree().getValue(c), openvdb::Vec3d(S(0, 0), S(1, 1), S(2, 2)));
-  EXPECT_EQ(o->tree().getValue(c), openvdb::Vec3d(S(0, 1), S(0, 2), S(1, 2)));
+  auto in_diag = grids.s_diag(1)->getConstAccessor();
+  for (const openvdb::Coord c : {openvdb::Coord(2, 0, 5), openvdb::Coord(n - 1, n - 1, nz)}) {
+    EXPECT_EQ(d->tree().getValue(c), openvdb::Vec3s(S(0, 0), S(1, 1), S(2, 2)));
+    EXPECT_EQ(o->tree().getValue(c), openvdb::Vec3s(S(0, 1), S(0, 2), S(1, 2)));
+    EXPECT_EQ(d->tree().getValue(c), openvdb::Vec3s(in_diag.getValue(c)));
+  }
   EXPECT_EQ(d->metaValue<std::string>("components"), "S_xx S_yy S_zz");
   EXPECT_EQ(o->metaValue<std::string>("components"), "S_xy S_xz S_yz");
   EXPECT_DOUBLE_EQ(d->metaValue<double>("alpha"), 0.3);
+  EXPECT_EQ(d->transform(), grids.s_diag(1)->transform());
 }

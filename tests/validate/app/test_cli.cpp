@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "sim/hdf5/table_file.h"
 #include "tests/validate/app/cli_fixture.h"
 
 namespace fs = std::filesystem;
@@ -206,4 +207,37 @@ TEST_F(Cli, ValidateCaseFilterRunsOnlyMatchingCases) {
   ASSERT_EQ(lines(none.err).size(), 1u) << none.err;
   for (const char* piece : {"--case", "nope*", "tau_a, tau_b, other"})
     EXPECT_NE(none.err.find(piece), std::string::npos) << none.err;
+}
+
+// validate reuses a case's cached tables when their simulation fingerprint
+// and configuration match this build's, whatever the commit; a different
+// fingerprint, none (an older mcref) or another configuration simulates again.
+TEST_F(Cli, ValidateReusesTablesOnlyWithTheSameSimFingerprint) {
+  write("x.toml", experiment());
+  write("suite.toml", "[suite]\nname = \"s\"\n[[case]]\nname = \"tau\"\nexperiment = \"x.toml\"\n");
+  const std::string table = path("out/tables/tau.h5");
+  auto validate = [&] {
+    const Result r = mcref("validate " + quote(path("suite.toml")) + " -o " + quote(path("out")));
+    EXPECT_NE(r.exit_code, 2) << r.err;
+    return r.err.find("(cached tables)") != std::string::npos;
+  };
+  // Rewrites the cached file with its provenance changed by `edit`.
+  auto rewrite = [&](void (*edit)(mcref::Provenance&)) {
+    mcref::TableFile f = mcref::read_table_file(table);
+    edit(f.provenance);
+    mcref::write_table_file(table, f);
+  };
+  EXPECT_FALSE(validate()) << "nothing to reuse yet";
+  EXPECT_EQ(mcref::read_table_file(table).provenance.sim_fingerprint, mcref::mcref_sim_fingerprint());
+  EXPECT_TRUE(validate()) << "same build, same config: reused";
+  rewrite([](mcref::Provenance& p) { p.git_commit = "0123456789ab-dirty"; });
+  EXPECT_TRUE(validate()) << "another commit, same fingerprint: reused";
+  rewrite([](mcref::Provenance& p) { p.sim_fingerprint = "0000000000000000"; });
+  EXPECT_FALSE(validate()) << "another fingerprint: simulated again";
+  EXPECT_EQ(mcref::read_table_file(table).provenance.sim_fingerprint, mcref::mcref_sim_fingerprint());
+  rewrite([](mcref::Provenance& p) { p.sim_fingerprint.clear(); });
+  EXPECT_FALSE(validate()) << "no fingerprint (an older file): simulated again";
+  EXPECT_TRUE(validate());
+  write("x.toml", experiment("tau0 = 0.4\nbeta = 0.8\n"));
+  EXPECT_FALSE(validate()) << "another configuration: simulated again";
 }
