@@ -60,10 +60,18 @@ def units_of(obj):
     return ""
 
 
+def edges_of(group, n):
+    """Bin edges of axis n: the CF `<n>_bounds` (n, 2), or the older `<n>_edges`; None if unbinned."""
+    if n + "_bounds" in group:
+        b = np.asarray(group[n + "_bounds"])
+        return np.append(b[:, 0], b[-1, 1])
+    return np.asarray(group[n + "_edges"]) if n + "_edges" in group else None
+
+
 def load_table(group, name):
     axes = []
     for n in _text(group.attrs["axes"]).split(","):
-        edges = np.asarray(group[n + "_edges"]) if n + "_edges" in group else None
+        edges = edges_of(group, n)
         axes.append(Axis(n, np.asarray(group[n]), units_of(group[n]), edges))
     comps = _text(group.attrs.get("components", ""))
     return Table(name, _text(group.attrs.get("quantity", name)), units_of(group), axes,

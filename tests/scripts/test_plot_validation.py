@@ -29,11 +29,11 @@ def write_table(group, axes, value, stderr, quantity, units, **attrs):
     group.attrs["units"] = units
     for k, v in attrs.items():
         group.attrs[k] = v
-    for n, v, unit in axes:
-        group.create_dataset(n, data=np.asarray(v, dtype=float)).attrs["unit"] = unit
+    for n, v, unit in axes:  # mcref's netCDF-CF layout: units, and (n, 2) bounds on binned axes
+        group.create_dataset(n, data=np.asarray(v, dtype=float)).attrs["units"] = unit
         if unit == "rad" and n in ("theta_o", "phi"):
             step = v[1] - v[0]
-            group.create_dataset(n + "_edges", data=np.append(v - step / 2, v[-1] + step / 2))
+            group.create_dataset(n + "_bounds", data=np.stack([v - step / 2, v + step / 2], axis=1))
     group.create_dataset("value", data=value)
     group.create_dataset("stderr", data=stderr)
 
@@ -162,3 +162,14 @@ def test_every_distinct_channel_is_drawn(run):
             assert f"{table} — channel {ch}" in titles
             assert any(g.startswith(f"sim|{table}|channel {ch}|") for _, g in gids(fig))
     assert "brdf — channel B" not in titles  # the same walk as G: drawn once
+
+
+def test_edges_from_cf_bounds_and_from_older_edges(tmp_path):
+    """Bin edges come from `<axis>_bounds` (n, 2), or from `<axis>_edges` in older files."""
+    with h5py.File(tmp_path / "t.h5", "w") as f:
+        f.create_dataset("a/phi_bounds", data=np.array([[0.0, 1.0], [1.0, 3.0]]))
+        f.create_dataset("b/phi_edges", data=np.array([0.0, 1.0, 3.0]))
+        f.create_group("c")
+        for g in ("a", "b"):
+            assert np.array_equal(validation_data.edges_of(f[g], "phi"), [0.0, 1.0, 3.0])
+        assert validation_data.edges_of(f["c"], "phi") is None
