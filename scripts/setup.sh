@@ -7,7 +7,7 @@ PACKAGES=(
   libhdf5-dev libtomlplusplus-dev libgtest-dev libbenchmark-dev
   python3-matplotlib python3-h5py python3-numpy
   pybind11-dev python3-pybind11 python3-pytest
-  python3-torch python3-scipy
+  python3-torch
   libopenmpi-dev openmpi-bin
 )
 missing=()

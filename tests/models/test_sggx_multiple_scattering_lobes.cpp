@@ -106,12 +106,12 @@ TEST(SggxMultipleScatteringLobes, LambertianLobeCarriesItsStatedEnergyPerSide) {
   for (const sg::LambertianSplit split : {sg::LambertianSplit{1, 1}, sg::LambertianSplit{1, 0}, sg::LambertianSplit{0.3, 0.55}})
     for (const Vec3 wi : {Vec3{0.3, 0.1, 0.9486832980505138}, Vec3{0.6, 0, -0.8}}) {
       double up = 0, down = 0;
-      for (double phi_sign : {1.0, -1.0}) {
+      for (double z_sign : {1.0, -1.0}) {
         const double e = 2 * kPi * rule.integrate([&](double mu) {
-          const Vec3 wo{std::sqrt(1 - mu * mu), 0, phi_sign * mu};
+          const Vec3 wo{std::sqrt(1 - mu * mu), 0, z_sign * mu};
           return sg::lambertian_lobe(split, wi, wo) * mu;
         }, 0, 1);
-        (phi_sign > 0 ? up : down) = e;
+        (z_sign > 0 ? up : down) = e;
       }
       const double same = wi.z > 0 ? up : down, other = wi.z > 0 ? down : up;
       EXPECT_NEAR(same, split.reflection, 1e-14);
