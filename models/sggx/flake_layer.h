@@ -24,6 +24,10 @@ struct FlakeLayer {
   Vec3 orientation{0, 0, 1};  // omega_p, non-zero (normalised here)
 };
 
+// Throws std::invalid_argument "<what>: <key> = <value> is out of range
+// (allowed: <range>)" unless ok.
+void require_parameter(bool ok, const std::string& what, const std::string& key, double value,
+                       const std::string& range);
 // Throws std::invalid_argument naming `what` (e.g. "layer 1"), the key, its
 // value and the allowed range when a parameter is out of range.
 void check_flake_layer(const FlakeLayer& l, const std::string& what);

@@ -1,7 +1,6 @@
 #include "models/sggx/multiple_scattering_lobes.h"
 
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 #include "models/sggx/single_scattering.h"
@@ -10,10 +9,7 @@ namespace mcref::sggx {
 
 namespace {
 void require(bool ok, const std::string& key, double value, const std::string& range) {
-  if (ok) return;
-  std::ostringstream s;
-  s << "multiple-scattering lobes: " << key << " = " << value << " is out of range (allowed: " << range << ")";
-  throw std::invalid_argument(s.str());
+  require_parameter(ok, "multiple-scattering lobes", key, value, range);
 }
 }  // namespace
 

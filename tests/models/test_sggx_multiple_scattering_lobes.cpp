@@ -171,6 +171,14 @@ TEST(SggxMultipleScatteringLobes, BadInputNamesTheKey) {
   bad.layers[0].alpha = 0;
   EXPECT_NE(message(bad).find("layers[0].alpha = 0"), std::string::npos) << message(bad);
   EXPECT_THROW(sg::multiple_scattering_bsdf(st, m, 3, wi, wo), std::invalid_argument);
+  std::vector<sg::FlakeLayer> bad_stack = st;
+  bad_stack[0].albedo = {2, 0.5, 0.5};
+  try {
+    sg::multiple_scattering_bsdf(bad_stack, m, 0, wi, wo);
+    ADD_FAILURE() << "no error for albedo 2";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("layer 0: albedo[0] = 2"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
