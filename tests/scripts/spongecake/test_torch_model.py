@@ -120,3 +120,14 @@ def test_gradients_match_finite_differences():
     args = tuple(torch.tensor(v, dtype=torch.float64, requires_grad=True)
                  for v in (0.3, 0.8, [0.7, 0.5, 0.2], [0.1, 0.5, 0.9], 1.2, 0.3))
     assert torch.autograd.gradcheck(f, args, eps=1e-6, atol=1e-5, rtol=1e-4)
+
+
+def test_module_rejects_bad_lobes_naming_the_key():
+    layers = [sg.FlakeLayer("surface", 0.3, 1.0)]
+    bad = sg.MultipleScatteringLobes([sg.ModifiedLayer(0.3, 1.0, [0.5, 0.5, 0.5], [1, 1, 1])], 1.0, -1.0)
+    with pytest.raises(mcref.ConfigError, match=r"w2 = -1 .*\[0, inf\)"):
+        sg.spongecake_ms_bsdf(layers, bad, 0, 0.1, 0.0, 0.2, 0.0)
+    with pytest.raises(mcref.ConfigError, match="albedo"):
+        sg.FlakeLayer("fiber", 0.3, 1.0, albedo=[1.5, 0, 0])
+    with pytest.raises(mcref.ConfigError, match="flake type"):
+        sg.FlakeLayer("sphere", 0.3, 1.0)
