@@ -9,6 +9,7 @@ PACKAGES=(
   python3-xarray python3-h5netcdf python3-openvdb
   chromium
   pybind11-dev python3-pybind11 python3-pytest
+  python3-torch
   libopenmpi-dev openmpi-bin
 )
 missing=()

@@ -29,6 +29,7 @@ void bind_tables(py::module_& m);        // Table, read_tables, write_tables
 void bind_simulate(py::module_& m);      // simulate, evaluate_model
 void bind_micrograin(py::module_& m);    // micrograin models (LRPB23, vNDF paper)
 void bind_sggx(py::module_& m);          // SGGX and SpongeCake
+void bind_spongecake_lobes(py::module_& m);  // SpongeCake multiple-scattering lobes (after bind_sggx)
 void bind_lambert_sphere(py::module_& m);  // d'Eon 2021
 void bind_radiative_transfer(py::module_& m);  // Chandrasekhar's H
 void bind_samplers(py::module_& m);      // samplers returning (samples, pdf)

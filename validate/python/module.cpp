@@ -28,6 +28,7 @@ PYBIND11_MODULE(mcref, m) {
   mcref::python::bind_simulate(m);
   mcref::python::bind_micrograin(m);
   mcref::python::bind_sggx(m);
+  mcref::python::bind_spongecake_lobes(m);
   mcref::python::bind_lambert_sphere(m);
   mcref::python::bind_radiative_transfer(m);
   mcref::python::bind_samplers(m);

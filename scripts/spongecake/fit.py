@@ -1,0 +1,230 @@
+#!/usr/bin/python3
+"""Per-material fit of SpongeCake's multiple-scattering lobes (Wang et al. 2022,
+Sec. 5): for one material (its layers and its simulated multiple-scattering
+part, orders >= 2, reflection and transmission), the lobe parameters (alpha',
+T', gamma', f0' per layer, W1, W2) minimising the paper's loss, the MAE over
+every cell and channel between the simulated part and
+W1 f_ss'(wi, wo) + W2 f_lambert(wi, wo). This is the floor of the form itself,
+whatever network predicts the parameters.
+
+Optimiser: L-BFGS (strong Wolfe line search, torch) on the MAE smoothed as
+mean(sqrt(r^2 + delta^2) - delta), delta decreasing to 0 (the MAE itself), from
+several starts (the loss is not convex): start 0 is the material's own parameters with W1 = 0.5,
+W2 = 0.05; the others are drawn from a torch.Generator seeded with `seed`.
+Deterministic for a seed (one torch thread).
+
+Output ranges (the paper states none; ours): alpha' in [0.01, 1] and T' in
+[0.01, 100] (log scale), gamma', f0' in [0, 1], W1, W2 >= 0, through smooth maps
+of unconstrained variables. W1 and gamma' enter only as W1 gamma'_c (Eq. 11), so
+only those products are identifiable: the optimiser works on them (q = W1 gamma' >= 0)
+and reports W1 = max q, gamma' = q / W1.
+
+  /usr/bin/python3 scripts/spongecake/fit.py DATA.h5 [--entries 0,1,...] [--starts 4] [--seed 1]
+      [--iterations 200] [--split R,T] [-o FITS.json]
+(Runs as a script; to import it, put scripts/ on PYTHONPATH. The module `mcref` is not needed.)
+"""
+import argparse
+import json
+import math
+import os
+import sys
+from dataclasses import dataclass
+
+import torch
+
+if __package__ in (None, ""):
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from spongecake import torch_model as tm  # noqa: E402
+
+ALPHA_RANGE = (0.01, 1.0)
+THICKNESS_RANGE = (0.01, 100.0)
+
+
+@dataclass
+class Material:
+    """A material and its cells: layers (torch_model.FlakeLayer), directions wi, wo
+    (cells, 3) and the simulated multiple-scattering part ms (cells, 3)."""
+    layers: list
+    wi: torch.Tensor
+    wo: torch.Tensor
+    ms: torch.Tensor
+
+
+def _log_range(a, lo, hi):
+    return lo * (hi / lo) ** torch.sigmoid(a)
+
+
+def _logit(u):
+    return math.log(u / (1 - u))
+
+
+def lobes_from_vector(x, n_layers, split=(1.0, 1.0), normalise=True):
+    """The unconstrained vector x as torch_model.Lobes. Per layer (8 entries): alpha', T',
+    log q (3), f0' (3), with q_c = W1 gamma'_c; then log W2. Since W1 and gamma' enter
+    only as those products, q >= 0 covers the whole range of (W1 >= 0, gamma' in [0, 1]);
+    normalise=True returns W1 = max q, gamma' = q / W1 (the form's own parameters),
+    normalise=False W1 = 1, gamma' = q (the same values, for the optimiser)."""
+    alpha, thickness, q, f0 = [], [], [], []
+    for k in range(n_layers):
+        v = x[8 * k:8 * k + 8]
+        alpha.append(_log_range(v[0], *ALPHA_RANGE))
+        thickness.append(_log_range(v[1], *THICKNESS_RANGE))
+        q.append(torch.exp(v[2:5]))
+        f0.append(torch.sigmoid(v[5:8]))
+    w1 = torch.max(torch.stack([torch.max(t) for t in q])) if normalise else torch.ones((), dtype=tm.DTYPE)
+    return tm.Lobes(alpha, thickness, [t / w1 for t in q], f0, w1=w1, w2=torch.exp(x[-1]),
+                    split_reflection=split[0], split_transmission=split[1])
+
+
+def vector_from_lobes(lobes, n_layers, margin=1e-6):
+    """Inverse of lobes_from_vector; bounded values are clamped to [margin, 1 - margin]
+    of their (log) range, where the maps' slopes are not yet flat."""
+    def inv_log(v, lo, hi):
+        u = (math.log(min(max(float(v), lo), hi)) - math.log(lo)) / (math.log(hi) - math.log(lo))
+        return _logit(min(max(u, margin), 1 - margin))
+
+    def inv_unit(v):
+        return _logit(min(max(float(v), margin), 1 - margin))
+
+    x = []
+    for k in range(n_layers):
+        x += [inv_log(lobes.alpha[k], *ALPHA_RANGE), inv_log(lobes.thickness[k], *THICKNESS_RANGE)]
+        x += [math.log(max(float(lobes.w1) * float(v), margin)) for v in torch.as_tensor(lobes.albedo[k]).reshape(3)]
+        x += [inv_unit(v) for v in torch.as_tensor(lobes.f0[k]).reshape(3)]
+    x += [math.log(max(float(lobes.w2), margin))]
+    return torch.tensor(x, dtype=tm.DTYPE)
+
+
+def loss(material, lobes):
+    """The paper's loss: mean absolute difference over every cell and channel."""
+    return torch.mean(torch.abs(tm.multiple_scattering_lobes(material.layers, lobes, material.wi, material.wo) - material.ms))
+
+
+def starts(material, count, seed):
+    n = len(material.layers)
+    own = tm.Lobes([l.alpha for l in material.layers], [l.thickness for l in material.layers],
+                   [l.albedo for l in material.layers], [l.f0 for l in material.layers], w1=0.5, w2=0.05)
+    out = [vector_from_lobes(own, n, margin=0.05)]
+    g = torch.Generator().manual_seed(seed)
+    for _ in range(count - 1):
+        x = []
+        for _ in range(n):
+            u = 0.05 + 0.9 * torch.rand(5, generator=g, dtype=tm.DTYPE)  # alpha', T', f0' in their ranges
+            log_q = math.log(0.02) + (math.log(1.0) - math.log(0.02)) * torch.rand(3, generator=g, dtype=tm.DTYPE)
+            x.append(torch.cat([torch.log(u[:2] / (1 - u[:2])), log_q, torch.log(u[2:] / (1 - u[2:]))]))
+        w2 = math.log(1e-3) + (math.log(0.5) - math.log(1e-3)) * torch.rand(1, generator=g, dtype=tm.DTYPE)
+        out.append(torch.cat(x + [w2]))
+    return out
+
+
+def smoothed_loss(material, lobes, delta):
+    """mean(sqrt(r^2 + delta^2) - delta): the MAE smoothed at scale delta (-> MAE as delta -> 0)."""
+    r = tm.multiple_scattering_lobes(material.layers, lobes, material.wi, material.wo) - material.ms
+    return torch.mean(torch.sqrt(r * r + delta * delta) - delta)
+
+
+# Continuation in the smoothing scale, relative to mean |ms|: L-BFGS stalls on the
+# kinks of the plain MAE, so each stage minimises a smoothed MAE from the previous
+# stage's result, and the last stage is the MAE itself (delta = 0).
+SMOOTHING = (1e-1, 1e-2, 1e-3, 1e-4, 1e-6, 0.0)
+
+
+def fit(material, n_starts=4, seed=1, iterations=200, split=(1.0, 1.0), x0=None):
+    """Best of n_starts runs (L-BFGS per smoothing stage, `iterations` each); returns
+    (loss, Lobes, unconstrained vector, per-start losses). x0 (optional) replaces the starts."""
+    torch.set_num_threads(1)
+    if n_starts < 1 or iterations < 1:
+        raise ValueError(f"fit: starts = {n_starts}, iterations = {iterations} (allowed: >= 1)")
+    n = len(material.layers)
+    scale = float(torch.mean(torch.abs(material.ms)))
+    best, losses = None, []
+    for x_start in ([x0] if x0 is not None else starts(material, n_starts, seed)):
+        x = x_start.clone().requires_grad_(True)
+        for relative in SMOOTHING:
+            opt = torch.optim.LBFGS([x], lr=1, max_iter=iterations, history_size=20, line_search_fn="strong_wolfe",
+                                    tolerance_grad=1e-14, tolerance_change=1e-16)
+
+            def closure():
+                opt.zero_grad()
+                value = smoothed_loss(material, lobes_from_vector(x, n, split, normalise=False), relative * scale)
+                value.backward()
+                return value
+
+            opt.step(closure)
+        with torch.no_grad():
+            value = float(loss(material, lobes_from_vector(x, n, split, normalise=False)))
+        losses.append(value)
+        if math.isfinite(value) and (best is None or value < best[0]):
+            best = (value, x.detach().clone())
+    if best is None:
+        raise RuntimeError("fit: every start ended with a non-finite loss")
+    return best[0], lobes_from_vector(best[1], n, split), best[1], losses
+
+
+def lobes_dict(lobes):
+    f = lambda v: [float(t) for t in torch.as_tensor(v).reshape(-1)]  # noqa: E731
+    return {"alpha": [float(a) for a in lobes.alpha], "thickness": [float(t) for t in lobes.thickness],
+            "albedo": [f(a) for a in lobes.albedo], "f0": [f(a) for a in lobes.f0], "w1": float(lobes.w1),
+            "w2": float(lobes.w2), "split": [lobes.split_reflection, lobes.split_transmission]}
+
+
+def parse_split(text):
+    try:
+        r, t = (float(v) for v in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--split = {text!r}: expected two numbers R,T")
+    if not (r >= 0 and t >= 0 and math.isfinite(r) and math.isfinite(t)):
+        raise argparse.ArgumentTypeError(f"--split = {text!r}: R and T must be finite and >= 0")
+    return r, t
+
+
+def main(argv=None):
+    from spongecake import dataset
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("data", help="an mcref dataset file (SpongeCake entries)")
+    ap.add_argument("--entries", help="comma-separated entry indices (default: every entry)")
+    ap.add_argument("--starts", type=int, default=4)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--iterations", type=int, default=200)
+    ap.add_argument("--split", type=parse_split, default=(1.0, 1.0), help="Lambertian split R,T (default 1,1)")
+    ap.add_argument("-o", "--output", help="write the fits as JSON (atomically)")
+    a = ap.parse_args(argv)
+    for key, v in (("--starts", a.starts), ("--iterations", a.iterations)):
+        if v < 1:
+            ap.error(f"{key} = {v} is out of range (allowed: >= 1)")
+    if a.seed < 0:
+        ap.error(f"--seed = {a.seed} is out of range (allowed: >= 0)")
+    try:
+        available = dataset.entry_indices(a.data)
+        try:
+            entries = available if a.entries is None else [int(v) for v in a.entries.split(",")]
+        except ValueError:
+            raise ValueError(f"--entries = {a.entries!r}: expected comma-separated entry indices")
+        missing = [i for i in entries if i not in available]
+        if missing:
+            raise ValueError(f"{a.data}: --entries {missing} not in the file (entries: {available[:10]}...)")
+        materials = [(i, dataset.read_material(a.data, i)) for i in entries]  # every entry checked first
+    except (OSError, KeyError, ValueError) as e:
+        print(f"fit: {e}", file=sys.stderr)
+        return 2
+    results = []
+    print("entry layers  loss        mean|ms|    loss/mean|ms|  w1      w2")
+    for i, m in materials:
+        value, lobes, _, losses = fit(m, a.starts, a.seed, a.iterations, a.split)
+        scale = float(torch.mean(torch.abs(m.ms)))
+        results.append({"entry": i, "loss": value, "mean_abs_ms": scale, "start_losses": losses, "lobes": lobes_dict(lobes)})
+        print(f"{i:5d} {len(m.layers):6d}  {value:.4e}  {scale:.4e}  {value / scale if scale > 0 else float('nan'):13.4f}"
+              f"  {float(lobes.w1):.4f}  {float(lobes.w2):.4f}")
+    if a.output:
+        doc = {"dataset": os.path.abspath(a.data), "seed": a.seed, "starts": a.starts, "iterations": a.iterations,
+               "split": list(a.split), "loss": "MAE over every cell and channel (reflection and transmission), orders >= 2",
+               "fits": results}
+        tmp = a.output + ".tmp"
+        with open(tmp, "w") as f:
+            json.dump(doc, f, indent=1)
+        os.replace(tmp, a.output)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
