@@ -102,6 +102,6 @@ def set_log_y(ax, values):
 def save(fig, path):
     """Write to a temporary name and rename: never a half-written PNG."""
     tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=DPI)
+    fig.savefig(tmp, dpi=DPI, bbox_inches="tight")  # legends placed below the axes stay in the image
     os.replace(tmp, path)
     plt.close(fig)
