@@ -5,12 +5,25 @@
 namespace mcref {
 
 namespace {
+
 const std::vector<const ModelFamily*>& families() {
   static const std::vector<const ModelFamily*> f{&micrograin_geometry_models(), &micrograin_brdf_models(),
                                                  &slab_models(), &sphere_models()};
   return f;
 }
 thread_local CellsDone current_sink;
+
+// The family of a model, and its info (nullptr if unknown).
+const ModelFamily* family_of(const std::string& model, const ModelInfo** info) {
+  for (const ModelFamily* f : families())
+    for (const ModelInfo& m : f->models)
+      if (m.name == model) {
+        *info = &m;
+        return f;
+      }
+  return nullptr;
+}
+
 }  // namespace
 
 CellProgressScope::CellProgressScope(CellsDone sink) : previous_(std::move(current_sink)) {
@@ -49,30 +62,34 @@ std::vector<ModelInfo> models_for(const std::string& quantity, const std::string
 }
 
 const ModelInfo* find_model(const std::string& name) {
-  for (const ModelFamily* f : families())
-    for (const ModelInfo& m : f->models)
-      if (m.name == name) return &m;
-  return nullptr;
+  const ModelInfo* m = nullptr;
+  family_of(name, &m);
+  return m;
+}
+
+std::string model_mismatch(const std::string& model, const Table& table, const Experiment& ex) {
+  const ModelInfo* m = nullptr;
+  const ModelFamily* f = family_of(model, &m);
+  if (!f) return "unknown model " + model;
+  if (m->quantity != table.quantity || m->kind != ex.kind)
+    return "model " + model + " predicts " + m->quantity + " tables of " + m->kind + " geometry, and table " + table.name +
+           " is " + table.quantity + " of " + ex.kind + " geometry";
+  return f->unsupported ? f->unsupported(model, ex) : "";
 }
 
 std::vector<double> evaluate_model(const std::string& model, const Table& table, const Experiment& ex) {
-  for (const ModelFamily* f : families())
-    for (const ModelInfo& m : f->models)
-      if (m.name == model) {
-        if (m.quantity != table.quantity)
-          throw std::invalid_argument("model " + model + " predicts " + m.quantity + ", not " + table.quantity);
-        if (m.kind != ex.kind) throw std::invalid_argument("model " + model + " applies to " + m.kind + " geometry");
-        return f->evaluate(model, table, ex);
-      }
-  throw std::invalid_argument("unknown model " + model);
+  const std::string why = model_mismatch(model, table, ex);
+  if (!why.empty()) throw std::invalid_argument(why);
+  const ModelInfo* m = nullptr;
+  return family_of(model, &m)->evaluate(model, table, ex);
 }
 
 std::vector<double> evaluate_model_stderr(const std::string& model, const Table& table, const Experiment& ex,
                                           const std::vector<double>& values) {
-  for (const ModelFamily* f : families())
-    for (const ModelInfo& m : f->models)
-      if (m.name == model) return f->evaluate_stderr ? f->evaluate_stderr(model, table, ex, values) : std::vector<double>{};
-  throw std::invalid_argument("unknown model " + model);
+  const ModelInfo* m = nullptr;
+  const ModelFamily* f = family_of(model, &m);
+  if (!f) throw std::invalid_argument("unknown model " + model);
+  return f->evaluate_stderr ? f->evaluate_stderr(model, table, ex, values) : std::vector<double>{};
 }
 
 std::vector<double> evaluate_model(const std::string& model, const Table& table, const MicrograinGeometry& geometry) {

@@ -26,6 +26,9 @@ struct ModelInfo {
 using ModelEvaluator = std::function<std::vector<double>(const std::string& model, const Table&, const Experiment&)>;
 using ModelStderrEvaluator = std::function<std::vector<double>(const std::string& model, const Table&, const Experiment&,
                                                                const std::vector<double>& values)>;
+// Why a model does not apply to an experiment (an assumption of the model the
+// experiment breaks, e.g. isotropic grains), or "" if it does.
+using ModelAssumptions = std::function<std::string(const std::string& model, const Experiment&)>;
 
 struct ModelFamily {
   std::vector<ModelInfo> models;
@@ -33,6 +36,8 @@ struct ModelFamily {
   // Standard errors of models that are Monte Carlo estimates themselves,
   // given their values (empty result: the model has no noise of its own). Optional.
   ModelStderrEvaluator evaluate_stderr = nullptr;
+  // Optional; checked before any evaluation (and before validate simulates).
+  ModelAssumptions unsupported = nullptr;
 };
 
 // Progress inside one model evaluation. The caller sets a sink for its own
@@ -66,7 +71,12 @@ const ModelFamily& sphere_models();
 // All models of a table quantity for a geometry kind (empty if none).
 std::vector<ModelInfo> models_for(const std::string& quantity, const std::string& kind = "micrograin");
 const ModelInfo* find_model(const std::string& name);
-// Throws std::invalid_argument for a model that does not fit the table.
+// Why `model` cannot be evaluated on `table` of `ex` (another quantity or
+// geometry kind, or an assumption of the model the experiment breaks), or ""
+// if it can. Needs only the table's name, quantity and attributes, so it
+// runs on empty tables before anything is simulated.
+std::string model_mismatch(const std::string& model, const Table& table, const Experiment& ex);
+// Throws std::invalid_argument for a model that does not fit the table (model_mismatch).
 std::vector<double> evaluate_model(const std::string& model, const Table& table, const Experiment& experiment);
 // Per-cell standard errors of a model's own Monte Carlo noise, given its
 // values from evaluate_model; empty if it has none.

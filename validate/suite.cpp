@@ -14,6 +14,7 @@
 #include <tbb/task_arena.h>
 
 #include "sim/experiment/simulate.h"
+#include "sim/experiment/table_plan.h"
 #include "sim/experiment/toml_reader.h"
 #include "sim/files/input_file.h"
 #include "sim/hdf5/table_file.h"
@@ -71,6 +72,8 @@ Suite load_suite_at_depth(const std::string& path, int depth) {
   for (std::size_t i = 0; i < cases.size(); ++i) {
     TomlReader c(*cases[i], path, "case." + std::to_string(i));
     Case k;
+    k.file = path;
+    k.key = "case." + std::to_string(i);
     k.name = c.any_string("name");
     for (const Case& other : s.cases)
       if (other.name == k.name) c.fail("name", "\"" + k.name + "\" is used twice");
@@ -246,6 +249,22 @@ void exclude_duplicate_channels(const Table& t, std::vector<double>& model) {
     }
 }
 
+// The checks of a case on its tables (simulated, or the empty tables its
+// experiment will write): the suite's, or else every model that predicts a
+// table (of its component, if the model names one) and applies to the
+// experiment.
+std::vector<Check> checks_of(const Case& c, const std::vector<Table>& tables, const Experiment& ex) {
+  if (!c.checks.empty()) return c.checks;
+  std::vector<Check> checks;
+  for (const Table& t : tables)
+    for (const ModelInfo& m : models_for(t.quantity, ex.kind)) {
+      if (!m.component.empty() && (t.attributes.count("component") == 0 || t.attributes.at("component") != m.component))
+        continue;
+      if (model_mismatch(m.name, t, ex).empty()) checks.push_back({t.name, m.name, 0.0});
+    }
+  return checks;
+}
+
 // One model against one simulated table.
 CheckResult run_check(const Check& chk, const Table& t, const Experiment& ex, const Suite& suite) {
   const ModelInfo* info = find_model(chk.model);
@@ -266,22 +285,41 @@ CheckResult run_check(const Check& chk, const Table& t, const Experiment& ex, co
 
 }  // namespace
 
+// The checks are judged on the tables the experiments will write, known from
+// their measures (empty_tables), so nothing is simulated first.
+std::vector<Experiment> plan_suite(const Suite& suite, int threads) {
+  std::vector<Experiment> experiments;
+  for (const Case& c : suite.cases) experiments.push_back(load_experiment(c.experiment_path, c.sets));
+  for (std::size_t k = 0; k < suite.cases.size(); ++k) {
+    const Case& c = suite.cases[k];
+    const Experiment& ex = experiments[k];
+    check_memory(ex, threads);
+    const std::vector<Table> tables = table_outline(ex);
+    for (std::size_t j = 0; j < c.checks.size(); ++j) {
+      const Check& chk = c.checks[j];
+      const std::string key = c.key + ".check." + std::to_string(j);
+      const auto t = std::find_if(tables.begin(), tables.end(), [&](const Table& x) { return x.name == chk.table; });
+      if (t == tables.end()) {
+        std::string names;
+        for (const Table& x : tables) names += (names.empty() ? "" : ", ") + x.name;
+        throw ConfigError(c.file, key, "case \"" + c.name + "\": table \"" + chk.table + "\" is not written by " +
+                                           ex.file + " (it writes: " + names + ")");
+      }
+      const std::string why = model_mismatch(chk.model, *t, ex);
+      if (!why.empty())
+        throw ConfigError(c.file, key, "case \"" + c.name + "\": model \"" + chk.model + "\" cannot be checked on table \"" +
+                                           chk.table + "\": " + why);
+    }
+  }
+  return experiments;
+}
+
 int run_suite(const Suite& suite, const SuiteOptions& o) {
   // --threads bounds the model checks as well as the simulations.
   const int threads = o.threads > 0 ? o.threads : tbb::info::default_concurrency();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
-  // Validate every case's experiment before simulating anything.
-  std::vector<Experiment> experiments;
-  for (const Case& c : suite.cases) experiments.push_back(load_experiment(c.experiment_path, c.sets));
-  for (std::size_t k = 0; k < suite.cases.size(); ++k)
-    for (const Check& chk : suite.cases[k].checks) {
-      bool found = false;
-      for (const Measure& m : experiments[k].measures)
-        found = found || chk.table == m.name || chk.table.rfind(m.name + "_", 0) == 0;  // a measure's tables are <name>[_part]
-      if (!found)
-        throw ConfigError(suite.file, "case." + std::to_string(k) + ".check",
-                          "table \"" + chk.table + "\" is not produced by " + suite.cases[k].experiment_path);
-    }
+  // Validate every case's experiment and checks before simulating anything.
+  const std::vector<Experiment> experiments = plan_suite(suite, o.threads);
   if (o.ranks->root()) fs::create_directories(fs::path(o.out_dir) / "tables");
   std::vector<CaseResult> results;
   int failures = 0;
@@ -300,17 +338,7 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
     if (!o.ranks->root()) continue;  // the other ranks only help simulate
     cr.provenance = f.provenance;
     cr.energy = energy_shares(f);
-    std::vector<Check> checks = c.checks;
-    if (checks.empty())
-      for (const Table& t : f.tables)
-        for (const ModelInfo& m : models_for(t.quantity, ex.kind)) {
-          if (!m.component.empty() && (t.attributes.count("component") == 0 || t.attributes.at("component") != m.component))
-            continue;
-          if (!(ex.kind == "micrograin" && ex.micrograin.anisotropic() &&
-                (m.name == "ndf_ggx_alpha_tilde" || m.name == "g1_smith_series_n4" || m.name == "g1_smith_series_n6" ||
-                 m.name == "g1_smith_ggx_alpha_tilde")))
-            checks.push_back({t.name, m.name, 0.0});
-        }
+    const std::vector<Check> checks = checks_of(c, f.tables, ex);
     for (const Check& chk : checks)
       if (!f.find(chk.table)) throw std::runtime_error("table " + chk.table + " missing from " + cr.table_file);
     // The checks of a case are independent: evaluated in parallel, kept in order.

@@ -24,6 +24,7 @@ struct Check {
 
 struct Case {
   std::string name, figure, description;
+  std::string file, key;           // where it is defined (suite file, "case.<i>"), for messages
   std::string experiment_path;     // resolved against the suite file's directory
   std::vector<std::string> sets;   // --set style overrides
   std::vector<Check> checks;       // empty: every model of every table, measured
@@ -48,6 +49,13 @@ struct SuiteOptions {
   // rank 0 alone checks the models and writes tables and results.
   const Communicator* ranks = &Communicator::self();
 };
+
+// Every case's experiment, validated with its checks before anything is
+// simulated: a ConfigError (suite file, case, model, table) for a case whose
+// tables would not fit in memory on `threads` threads (0: as simulate
+// decides), a check of a table the experiment does not write, or of a model
+// that does not predict that table.
+std::vector<Experiment> plan_suite(const Suite& suite, int threads);
 
 int run_suite(const Suite& suite, const SuiteOptions& options);
 

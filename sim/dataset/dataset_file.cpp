@@ -44,9 +44,13 @@ std::string DatasetHeader::difference(const DatasetHeader& o) const {
   if (columns != o.columns || labels != o.labels) return "the parameter columns differ";
   if (compression != o.compression) return "the compression levels differ";
   if (lean != o.lean) return std::string("one is lean storage, the other full (") + (lean ? "lean" : "full") + " vs " + (o.lean ? "lean" : "full") + ")";
-  if (mcref_version != o.mcref_version || git_commit != o.git_commit)
-    return "they were written by different mcref builds (" + mcref_version + " " + git_commit + " vs " +
-           o.mcref_version + " " + o.git_commit + ")";
+  if (sim_fingerprint.empty() || sim_fingerprint != o.sim_fingerprint) {
+    auto build = [](const DatasetHeader& h) {
+      return "mcref " + h.mcref_version + " " + h.git_commit + ", simulation fingerprint " +
+             (h.sim_fingerprint.empty() ? "none" : h.sim_fingerprint);
+    };
+    return "they were simulated by builds whose simulation differs (" + build(*this) + " vs " + build(o) + ")";
+  }
   return "";
 }
 
@@ -62,6 +66,7 @@ DatasetWriter::DatasetWriter(const std::string& path, const DatasetHeader& heade
     h5::write_int_attr(root, "format_version", kFormatVersion);
     h5::write_string_attr(root, "mcref_version", header.mcref_version);
     h5::write_string_attr(root, "git_commit", header.git_commit);
+    h5::write_string_attr(root, "sim_fingerprint", header.sim_fingerprint);
     h5::write_int_attr(root, "seed", static_cast<std::int64_t>(header.seed));
     h5::write_int_attr(root, "entries", header.entries);
     h5::write_string_attr(root, "shard", header.shard);
@@ -152,6 +157,7 @@ DatasetReader::DatasetReader(const std::string& path) : path_(path) {
     DatasetHeader& h = header_;
     h.mcref_version = h5::read_string_attr(root, "mcref_version");
     h.git_commit = h5::read_string_attr(root, "git_commit");
+    if (h5::has_attr(root, "sim_fingerprint")) h.sim_fingerprint = h5::read_string_attr(root, "sim_fingerprint");
     h.seed = static_cast<std::uint64_t>(h5::read_int_attr(root, "seed"));
     h.entries = h5::read_int_attr(root, "entries");
     h.shard = h5::read_string_attr(root, "shard");

@@ -3,7 +3,7 @@
 // the tables of many entries of one dataset config.
 //
 //   /                       attributes: mcref_format, format_version, mcref_version,
-//                           git_commit, seed, entries (in the whole dataset),
+//                           git_commit, sim_fingerprint, seed, entries (in the whole dataset),
 //                           shard ("all", "K/N" or "part"), compression,
 //                           dataset_config, experiment_config, experiment_file,
 //                           conventions, layout; storage = "lean" in lean files
@@ -43,6 +43,9 @@ namespace mcref {
 
 struct DatasetHeader {
   std::string mcref_version, git_commit;
+  // Of the build that simulated the entries (sim/hdf5/table_file.h); empty in
+  // files from before it. The git commit is provenance only, not compared.
+  std::string sim_fingerprint;
   std::uint64_t seed = 0;
   std::int64_t entries = 0;
   std::string shard = "all";
@@ -52,7 +55,7 @@ struct DatasetHeader {
   std::map<std::string, std::vector<std::string>> labels;  // categorical columns
   bool lean = false;  // float32 value and stderr, no sums (final files only)
 
-  // Same dataset (config, base, seed, build): shards and parts may be combined.
+  // Same dataset (config, base, seed, simulation fingerprint): shards and parts may be combined.
   bool same_dataset(const DatasetHeader& o) const;
   // Why not, in a few words ("" if same_dataset).
   std::string difference(const DatasetHeader& o) const;

@@ -9,6 +9,7 @@
 #include "sim/dataset/entry_scheduler.h"
 #include "sim/experiment/config_error.h"
 #include "sim/experiment/simulate.h"
+#include "sim/experiment/table_plan.h"
 #include "sim/hdf5/table_file.h"
 #include "sim/parallel/progress.h"
 
@@ -72,6 +73,7 @@ DatasetHeader dataset_header(const DatasetConfig& c, const std::string& shard) {
   DatasetHeader h;
   h.mcref_version = mcref_version();
   h.git_commit = mcref_git_commit();
+  h.sim_fingerprint = mcref_sim_fingerprint();
   h.seed = c.seed;
   h.entries = c.entries();
   h.shard = shard;
@@ -91,14 +93,11 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
   DatasetHeader final_header = dataset_header(c, shard);
   final_header.lean = o.lean;
   const DatasetHeader part_header = dataset_header(c, "part");
-  // Plan and validate every entry before writing anything.
-  std::vector<EntryPlan> mine;
-  for (std::int64_t i = 0; i < c.entries(); ++i) {
-    EntryPlan plan = plan_entry(c, i);
-    entry_experiment(c, plan);
-    if (i % o.shards == o.shard) mine.push_back(std::move(plan));
-  }
-  s.entries = static_cast<std::int64_t>(mine.size());
+  // This shard's entries are index(k) = shard + k shards, k < s.entries; each
+  // is planned from its index when needed, so nothing scales with the
+  // declared size but the entries a run computes.
+  s.entries = c.entries() > o.shard ? (c.entries() - o.shard - 1) / o.shards + 1 : 0;
+  auto index = [&](std::int64_t k) { return o.shard + k * o.shards; };
   const Communicator& ranks = *o.ranks;
   // An existing OUTPUT holding this shard: nothing to do; anything else is an
   // error. Rank 0 alone looks (only it writes OUTPUT) and tells the others.
@@ -123,15 +122,24 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
     return s;
   }
   const std::string dir = o.output + ".parts";
-  // Rank 0 alone scans the parts (it removes damaged ones); the other ranks
-  // learn whether that failed.
+  // Rank 0 alone scans the parts in index order (it removes damaged ones) up
+  // to the entries this run computes (all, or the first --stop-after ones),
+  // and validates each of those before anything is simulated or written; the
+  // other ranks learn whether that failed.
   std::vector<std::int64_t> pending;
+  bool more = false;  // pending entries beyond --stop-after
   std::string error;
   if (ranks.root()) {
     try {
-      for (const EntryPlan& p : mine) {
-        if (usable_part(part_path(dir, p.index), part_header, p.index, dir)) ++s.reused;
-        else pending.push_back(p.index);
+      for (std::int64_t k = 0; k < s.entries && !more; ++k) {
+        if (usable_part(part_path(dir, index(k)), part_header, index(k), dir)) ++s.reused;
+        else if (o.stop_after < 0 || static_cast<std::int64_t>(pending.size()) < o.stop_after) pending.push_back(index(k));
+        else more = true;
+      }
+      for (std::int64_t i : pending) {
+        const Experiment ex = entry_experiment(c, plan_entry(c, i));
+        check_memory(ex, o.threads);
+        select_tables(c, table_outline(ex));  // dataset.tables names tables the entry writes
       }
     } catch (const std::exception& e) {
       error = e.what();
@@ -142,8 +150,8 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
   SimulateOptions sim;
   sim.threads = o.threads;
   sim.quiet = true;
-  auto compute = [&](std::int64_t index) {
-    const EntryPlan& p = mine[static_cast<std::size_t>((index - o.shard) / o.shards)];
+  auto compute = [&](std::int64_t i) {
+    const EntryPlan p = plan_entry(c, i);
     const Experiment ex = entry_experiment(c, p);
     SimulateSummary summary;
     DatasetEntry e;
@@ -160,20 +168,20 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
     return summary.rays;
   };
   const ScheduleSummary done =
-      schedule_entries(ranks, pending, o.stop_after, compute, [&](std::int64_t, double) { progress.advance(1); });
+      schedule_entries(ranks, pending, -1, compute, [&](std::int64_t, double) { progress.advance(1); });
   s.computed = done.computed;
   s.rays = done.rays;
   progress.finish();
   s.seconds = progress.elapsed_seconds();
   if (!ranks.root()) return s;
-  if (s.computed + s.reused < s.entries) return s;
+  if (more || s.computed + s.reused < s.entries) return s;
   {
     DatasetWriter w(o.output, final_header);
-    for (const EntryPlan& p : mine) w.add(DatasetReader(part_path(dir, p.index)).entry(p.index));
+    for (std::int64_t k = 0; k < s.entries; ++k) w.add(DatasetReader(part_path(dir, index(k))).entry(index(k)));
     w.commit();
   }
   std::error_code ec;
-  for (const EntryPlan& p : mine) fs::remove(part_path(dir, p.index), ec);
+  for (std::int64_t k = 0; k < s.entries; ++k) fs::remove(part_path(dir, index(k)), ec);
   // Temporary files of interrupted part writes; anything else stays, and so does the directory.
   if (fs::is_directory(dir, ec))
     for (const auto& f : fs::directory_iterator(dir, ec))
@@ -221,6 +229,7 @@ std::int64_t merge_datasets(const std::vector<std::string>& inputs, const std::s
   }
   DatasetHeader h = first;
   h.shard = "all";
+  h.git_commit = mcref_git_commit();  // of the build that writes the file, as after a resume: shards agree on the rest
   h.lean = lean;
   Progress progress("merge", static_cast<double>(n), quiet);
   DatasetWriter w(output, h);

@@ -1,9 +1,9 @@
 #include "sim/experiment/simulate.h"
 
 #include <tbb/global_control.h>
-#include <tbb/info.h>
 
 #include "sim/experiment/simulate_kinds.h"
+#include "sim/experiment/table_plan.h"
 
 namespace mcref {
 
@@ -20,13 +20,14 @@ std::vector<Table> flatten(std::vector<std::vector<Table>>&& per_measure) {
 }
 
 std::vector<Table> simulate(const Experiment& ex, const SimulateOptions& options, SimulateSummary* summary) {
-  const int threads = options.threads > 0 ? options.threads
-                                          : (ex.run.threads > 0 ? ex.run.threads : tbb::info::default_concurrency());
+  const int threads = effective_threads(ex, options.threads);
+  const Communicator& ranks = *options.ranks;
+  // Before anything is allocated; rank 0 (which holds the tables) decides for every rank.
+  check_on_root(ranks, [&] { check_memory(ex, threads); });
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   double work = 0;
   for (const Measure& m : ex.measures) work += work_units(m);
   work *= ex.run.batches;
-  const Communicator& ranks = *options.ranks;
   Progress progress(options.label, work, options.quiet || !ranks.root());
   const BatchLoop loop(ranks, progress, work / ex.run.batches);
   std::size_t grains = 0;

@@ -16,6 +16,12 @@ double work_units(const Measure& m);
 // The tables of every measure, in measure order, as one list.
 std::vector<Table> flatten(std::vector<std::vector<Table>>&& per_measure);
 
+// The empty tables of every measure (one list per measure), as the
+// simulate_<kind> below fill them.
+BatchLoop::Tables micrograin_tables(const Experiment& ex);
+BatchLoop::Tables slab_tables(const Experiment& ex);
+BatchLoop::Tables sphere_tables(const Experiment& ex);
+
 std::vector<Table> simulate_micrograin(const Experiment& ex, const BatchLoop& loop, std::size_t* grains);
 std::vector<Table> simulate_slab(const Experiment& ex, const BatchLoop& loop);
 std::vector<Table> simulate_spheres(const Experiment& ex, const BatchLoop& loop);

@@ -5,9 +5,14 @@
 
 namespace mcref {
 
-std::vector<Table> simulate_micrograin(const Experiment& ex, const BatchLoop& loop, std::size_t* grains) {
+BatchLoop::Tables micrograin_tables(const Experiment& ex) {
   BatchLoop::Tables tables;
   for (const Measure& m : ex.measures) tables.push_back(estimator_for(m.quantity).make_tables(m, ex));
+  return tables;
+}
+
+std::vector<Table> simulate_micrograin(const Experiment& ex, const BatchLoop& loop, std::size_t* grains) {
+  BatchLoop::Tables tables = micrograin_tables(ex);
   loop.run(ex.run.batches, tables, [&](int b, BatchLoop::Tables& into) {
     const MicrograinField field(ex.micrograin, micrograin_realization_seed(ex.run.seed, static_cast<std::uint64_t>(b)));
     if (grains) *grains = field.grain_count();

@@ -45,13 +45,18 @@ Table energy_table(const Measure& m) {
 
 }  // namespace
 
-std::vector<Table> simulate_slab(const Experiment& ex, const BatchLoop& loop) {
-  const volume::SlabMedium medium(ex.slab);
+BatchLoop::Tables slab_tables(const Experiment& ex) {
   BatchLoop::Tables tables;
   for (const Measure& m : ex.measures) {
     tables.push_back(make_brdf_tables(m.name, m.theta_i, m.phi_i, slab_layout(m, ex)));
     if (writes_energy_table(m, ex)) tables.back().push_back(energy_table(m));
   }
+  return tables;
+}
+
+std::vector<Table> simulate_slab(const Experiment& ex, const BatchLoop& loop) {
+  const volume::SlabMedium medium(ex.slab);
+  BatchLoop::Tables tables = slab_tables(ex);
   loop.run(ex.run.batches, tables, [&](int b, BatchLoop::Tables& into) {
     for (std::size_t k = 0; k < ex.measures.size(); ++k) {
       const Measure& m = ex.measures[k];

@@ -10,14 +10,18 @@
 
 namespace mcref {
 
-std::vector<Table> simulate_spheres(const Experiment& ex, const BatchLoop& loop) {
+BatchLoop::Tables sphere_tables(const Experiment& ex) {
   BatchLoop::Tables tables;
+  for (const Measure& m : ex.measures)
+    tables.push_back(m.quantity == "phase" ? make_phase_tables(m, ex) : make_sphere_brdf_tables(m, ex));
+  return tables;
+}
+
+std::vector<Table> simulate_spheres(const Experiment& ex, const BatchLoop& loop) {
+  BatchLoop::Tables tables = sphere_tables(ex);
   bool needs_field = false;
-  for (const Measure& m : ex.measures) {
-    const bool phase = m.quantity == "phase";
-    tables.push_back(phase ? make_phase_tables(m, ex) : make_sphere_brdf_tables(m, ex));
-    needs_field = needs_field || (!phase && ex.spheres.placement != SpherePlacement::volumetric);
-  }
+  for (const Measure& m : ex.measures)
+    needs_field = needs_field || (m.quantity != "phase" && ex.spheres.placement != SpherePlacement::volumetric);
   loop.run(ex.run.batches, tables, [&](int b, BatchLoop::Tables& into) {
     std::unique_ptr<SphereField> field;
     if (needs_field) {

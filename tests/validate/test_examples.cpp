@@ -36,6 +36,7 @@ TEST(Examples, EverySuiteAndItsCasesParse) {
     ASSERT_NO_THROW(s = load_suite(f)) << f;
     EXPECT_FALSE(s.cases.empty()) << f;
     for (const Case& c : s.cases) EXPECT_NO_THROW(load_experiment(c.experiment_path, c.sets)) << f << ": " << c.name;
+    EXPECT_NO_THROW(plan_suite(s, 2)) << f;  // every check names a table its case writes and a model of it
   }
 }
 

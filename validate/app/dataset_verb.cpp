@@ -84,7 +84,7 @@ int dataset(const std::vector<std::string>& raw, const std::string& command_line
                  static_cast<long long>(s.reused), s.rays, s.seconds, s.complete ? " -> " : "",
                  s.complete ? a.output.c_str() : "");
   if (!s.complete)
-    std::fprintf(stderr, "mcref dataset: stopped with %lld entries to go (kept in %s.parts/); rerun to continue\n",
+    std::fprintf(stderr, "mcref dataset: stopped with at most %lld entries to go (kept in %s.parts/); rerun to continue\n",
                  static_cast<long long>(s.entries - s.computed - s.reused), a.output.c_str());
   (void)command_line;
   return 0;

@@ -13,8 +13,9 @@ const char* kHelp =
     "usage: mcref merge SHARD.h5... -o DATA.h5 [--lean] [--quiet]\n"
     "\n"
     "Combines the shard files written by `mcref dataset --shard K/N` (same dataset\n"
-    "config, seed and mcref build; no entry twice; every entry present) into one\n"
-    "dataset file, byte for byte the file a single-process run would have written.\n"
+    "config, seed and simulation fingerprint; no entry twice; every entry present)\n"
+    "into one dataset file, byte for byte the file a single-process run of this\n"
+    "build would have written.\n"
     "  --lean   write value and stderr as float32 without the sums (about 4x smaller;\n"
     "           the result cannot be merged again; the shards must be full)\n";
 }  // namespace

@@ -354,10 +354,7 @@ std::vector<double> evaluate_simulated_vp(const Spec& s, const Table& t, const E
 std::vector<double> evaluate(const std::string& model, const Table& t, const Experiment& ex) {
   const auto it = specs().find(model);
   if (it == specs().end()) throw std::invalid_argument("no model " + model);
-  if (!ex.materials.configured) throw std::invalid_argument("model " + model + " needs [material]");
   const MicrograinGeometry& geo = ex.micrograin;
-  if (geo.anisotropic() && it->second.form == Spec::Form::Lrpb23)
-    throw std::invalid_argument("model " + model + " is defined for isotropic grains only");
   const mg::GrainField f{geo.tau0, geo.beta_x, geo.beta_y};
   if (it->second.simulated_vp) return evaluate_simulated_vp(it->second, t, ex, f);
   if (t.quantity == "brdf") return evaluate_brdf(it->second, t, ex, f);
@@ -374,10 +371,19 @@ std::vector<double> evaluate_stderr(const std::string& model, const Table& t, co
   return measured_pore_base(t, ex).stderrs;
 }
 
+std::string unsupported(const std::string& model, const Experiment& ex) {
+  const auto it = specs().find(model);
+  if (it == specs().end()) return "no model " + model;
+  if (!ex.materials.configured) return "model " + model + " needs [material]";
+  if (ex.micrograin.anisotropic() && it->second.form == Spec::Form::Lrpb23)
+    return "model " + model + " is defined for isotropic grains only (beta_x = beta_y)";
+  return "";
+}
+
 }  // namespace
 
 const ModelFamily& micrograin_brdf_models() {
-  static const ModelFamily family{model_list(), evaluate, evaluate_stderr};
+  static const ModelFamily family{model_list(), evaluate, evaluate_stderr, unsupported};
   return family;
 }
 

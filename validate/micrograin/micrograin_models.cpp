@@ -147,9 +147,6 @@ std::vector<double> evaluate_geometry_model(const std::string& model, const Tabl
   const mg::GrainField f{geometry.tau0, geometry.beta_x, geometry.beta_y};
   const bool isotropic = !geometry.anisotropic();
   const double beta = geometry.beta_x;
-  if (!isotropic && (model == "ndf_ggx_alpha_tilde" || model == "g1_smith_series_n4" || model == "g1_smith_series_n6" ||
-                      model == "g1_smith_ggx_alpha_tilde"))
-    throw std::invalid_argument("model " + model + " is defined for isotropic grains only");
   std::vector<double> out(t.cells(), NAN);
   const double rho = mg::unit_density(geometry.tau0);
   auto normal = [](double th, double ph) { return spherical_direction(th, ph); };
@@ -281,10 +278,18 @@ std::vector<double> evaluate_geometry_stderr(const std::string& model, const Tab
   return se;
 }
 
+std::string geometry_model_unsupported(const std::string& model, const Experiment& ex) {
+  if (ex.micrograin.anisotropic() && (model == "ndf_ggx_alpha_tilde" || model == "g1_smith_series_n4" ||
+                                      model == "g1_smith_series_n6" || model == "g1_smith_ggx_alpha_tilde"))
+    return "model " + model + " is defined for isotropic grains only (beta_x = beta_y)";
+  return "";
+}
+
 }  // namespace
 
 const ModelFamily& micrograin_geometry_models() {
-  static const ModelFamily family{geometry_model_list(), evaluate_geometry_model, evaluate_geometry_stderr};
+  static const ModelFamily family{geometry_model_list(), evaluate_geometry_model, evaluate_geometry_stderr,
+                                  geometry_model_unsupported};
   return family;
 }
 

@@ -166,8 +166,6 @@ std::vector<double> evaluate_all_channels(const std::string& model, const Table&
   if (model == "spongecake_ss_brdf" || model == "spongecake_ss_btdf")
     return bin_averages(t, [&](int c, Vec3 wi, Vec3 wo) { return single_scattering(g, c, wi, wo); });
   if (model == "spongecake_ss_substrate") {
-    if (g.substrate.kind != SlabSubstrate::Kind::kLambertian)
-      throw std::invalid_argument("spongecake_ss_substrate is implemented for Lambertian substrates");
     return bin_averages(t, [&](int c, Vec3 wi, Vec3 wo) {
       std::vector<sggx::Layer> stack;
       for (const SlabLayer& l : g.layers) stack.push_back(model_layer(l, c));
@@ -175,8 +173,6 @@ std::vector<double> evaluate_all_channels(const std::string& model, const Table&
     });
   }
   if (model == "chandrasekhar_isotropic") {
-    if (g.layers.size() != 1 || g.layers[0].phase != SlabPhase::kIsotropic || g.substrate.kind != SlabSubstrate::Kind::kNone)
-      throw std::invalid_argument("chandrasekhar_isotropic needs one isotropic layer and no substrate");
     std::map<double, radiative_transfer::IsotropicHalfSpace> hs;
     for (int c = 0; c < 3; ++c) hs.emplace(g.layers[0].albedo[c], radiative_transfer::IsotropicHalfSpace(g.layers[0].albedo[c]));
     return bin_averages(t, [&](int c, Vec3 wi, Vec3 wo) {
@@ -203,10 +199,20 @@ std::vector<double> evaluate_slab_model(const std::string& model, const Table& t
   return drop_duplicate_channels(ex.slab, evaluate_all_channels(model, t, ex));
 }
 
+std::string slab_model_unsupported(const std::string& model, const Experiment& ex) {
+  const SlabGeometry& g = ex.slab;
+  if (model == "spongecake_ss_substrate" && g.substrate.kind != SlabSubstrate::Kind::kLambertian)
+    return "spongecake_ss_substrate is implemented for Lambertian substrates";
+  if (model == "chandrasekhar_isotropic" &&
+      (g.layers.size() != 1 || g.layers[0].phase != SlabPhase::kIsotropic || g.substrate.kind != SlabSubstrate::Kind::kNone))
+    return "chandrasekhar_isotropic needs one isotropic layer and no substrate";
+  return "";
+}
+
 }  // namespace
 
 const ModelFamily& slab_models() {
-  static const ModelFamily family{slab_model_list(), evaluate_slab_model};
+  static const ModelFamily family{slab_model_list(), evaluate_slab_model, nullptr, slab_model_unsupported};
   return family;
 }
 

@@ -388,18 +388,21 @@ std::vector<double> evaluate(const std::string& model, const Table& t, const Exp
   if (t.quantity == "brdf_modes") return mode_values(mode_model(model), t, ex);
   if (t.quantity == "spherical_albedo") return kd_values(model, t, ex);
   if (model == "volumetric_mc") return volumetric_values(t, ex);
-  if (model == "single_scattering_eq10" && ex.spheres.placement != SpherePlacement::volumetric)
-    throw std::invalid_argument(
-        "single_scattering_eq10 is exact only for placement = \"volumetric\"; use single_scattering_eq10_dilute");
   if (model == "albedo_reference_three_term") return albedo_values(brdf_model("reference_three_term"), t, ex);
   if (model == "albedo_deon_corrected") return albedo_values(brdf_model("deon_corrected"), t, ex);
   return brdf_values(brdf_model(model), t, ex);
 }
 
+std::string unsupported(const std::string& model, const Experiment& ex) {
+  if (model == "single_scattering_eq10" && ex.spheres.placement != SpherePlacement::volumetric)
+    return "single_scattering_eq10 is exact only for placement = \"volumetric\"; use single_scattering_eq10_dilute";
+  return "";
+}
+
 }  // namespace
 
 const ModelFamily& sphere_models() {
-  static const ModelFamily family{model_list(), evaluate};
+  static const ModelFamily family{model_list(), evaluate, nullptr, unsupported};
   return family;
 }
 

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -20,6 +21,7 @@
 #include "sim/dataset/dataset_run.h"
 #include "sim/experiment/config_error.h"
 #include "sim/experiment/simulate.h"
+#include "sim/hdf5/table_file.h"
 
 namespace fs = std::filesystem;
 using mcref::ConfigError;
@@ -80,6 +82,21 @@ key = "geometry.layer.1.albedo"
 range = [0.0, 1.0]
 size = 3
 )";
+
+// Rewrites a dataset file with its header changed (as another build would have written it).
+void rewrite(const std::string& file, const std::function<void(mcref::DatasetHeader&)>& change) {
+  mcref::DatasetHeader h;
+  std::vector<mcref::DatasetEntry> entries;
+  {
+    mcref::DatasetReader r(file);
+    h = r.header();
+    for (std::int64_t i : r.indices()) entries.push_back(r.entry(i));
+  }
+  change(h);
+  mcref::DatasetWriter w(file, h);
+  for (const mcref::DatasetEntry& e : entries) w.add(e);
+  w.commit();
+}
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -198,6 +215,60 @@ TEST_F(DatasetRun, ThreadCountResumeShardsAndMergeGiveTheSameBytes) {
   ASSERT_EQ(cli("dataset ds.toml -o c1.h5 --shard 1/2 --threads 2 --quiet", &err), 0) << err;
   ASSERT_EQ(cli("merge c1.h5 c0.h5 -o cli.h5 --quiet", &err), 0) << err;
   EXPECT_EQ(std::system(("cmp -s '" + path("cli.h5") + "' '" + path("full.h5") + "'").c_str()), 0);
+}
+
+// Parts and shards combine when the build that simulated them had this
+// build's simulation fingerprint, whatever its git commit (a change to
+// validate/ or the README keeps a half-done dataset); another fingerprint, or
+// none (files from before it), is an error naming both builds.
+TEST_F(DatasetRun, PartsAndShardsCombineByTheSimulationFingerprintNotTheCommit) {
+  run("full.h5");
+  const std::string reference = slurp(path("full.h5"));
+  EXPECT_EQ(mcref::DatasetReader(path("full.h5")).header().sim_fingerprint, mcref::mcref_sim_fingerprint());
+  auto other_commit = [](mcref::DatasetHeader& h) { h.git_commit = "0123456789ab-dirty"; };
+  auto other_fingerprint = [](mcref::DatasetHeader& h) { h.sim_fingerprint = "00112233aabbccdd"; };
+  auto no_fingerprint = [](mcref::DatasetHeader& h) { h.sim_fingerprint.clear(); };
+  // Resume: a part of another commit is kept; the file is the reference.
+  run("r.h5", 0, 1, 1, 3);
+  rewrite(path("r.h5.parts/entry-1.h5"), other_commit);
+  const mcref::DatasetRunSummary resumed = run("r.h5");
+  EXPECT_EQ(resumed.reused, 3);
+  EXPECT_TRUE(slurp(path("r.h5")) == reference) << "resume across commits changed the bytes";
+  // A part simulated by another simulation (or by an mcref from before fingerprints).
+  const std::vector<std::pair<std::function<void(mcref::DatasetHeader&)>, std::string>> others{
+      {other_fingerprint, "simulation fingerprint 00112233aabbccdd"}, {no_fingerprint, "simulation fingerprint none"}};
+  for (const auto& [change, named] : others) {
+    fs::remove_all(path("f.h5.parts"));
+    run("f.h5", 0, 1, 1, 2);
+    rewrite(path("f.h5.parts/entry-0.h5"), change);
+    try {
+      run("f.h5");
+      ADD_FAILURE() << "a part of another simulation was mixed in";
+    } catch (const ConfigError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("f.h5.parts"), std::string::npos) << what;
+      EXPECT_NE(what.find("simulation fingerprint " + mcref::mcref_sim_fingerprint()), std::string::npos) << what;
+      EXPECT_NE(what.find(named), std::string::npos) << what;
+    }
+    EXPECT_FALSE(fs::exists(path("f.h5")));
+  }
+  // Merge: a shard of another commit merges into the reference bytes; one of
+  // another simulation is refused, naming it.
+  run("s0.h5", 0, 2);
+  run("s1.h5", 1, 2);
+  rewrite(path("s1.h5"), other_commit);
+  EXPECT_EQ(mcref::merge_datasets({path("s1.h5"), path("s0.h5")}, path("merged.h5"), true), 6);
+  EXPECT_TRUE(slurp(path("merged.h5")) == reference) << "merge across commits changed the bytes";
+  rewrite(path("s1.h5"), other_fingerprint);
+  try {
+    mcref::merge_datasets({path("s0.h5"), path("s1.h5")}, path("m2.h5"), true);
+    ADD_FAILURE() << "shards of another simulation were merged";
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("s1.h5"), std::string::npos) << what;
+    EXPECT_NE(what.find("simulation fingerprint 00112233aabbccdd"), std::string::npos) << what;
+  }
+  EXPECT_FALSE(fs::exists(path("m2.h5")));
 }
 
 TEST_F(DatasetRun, BadShardSetsAreErrors) {
