@@ -90,10 +90,30 @@ DatasetWriter::~DatasetWriter() {
   if (file_ >= 0) H5Fclose(file_);
 }
 
+// A failed HDF5 write (a full disk) as one line naming the output.
+template <class Write>
+void DatasetWriter::guarded(const Write& write) {
+  try {
+    write();
+  } catch (const std::logic_error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path_ + ": writing failed (" + e.what() + "; disk full?)");
+  }
+}
+
 void DatasetWriter::add(const DatasetEntry& e) {
   if (!rows_.empty() && e.index <= rows_.back().index)
     throw std::logic_error("dataset entries must be written in increasing index order");
   if (e.parameters.size() != header_.columns.size()) throw std::logic_error("entry has the wrong parameter count");
+  guarded([&] { write_entry(e); });
+  DatasetEntry row = e;
+  row.tables.clear();
+  row.config.clear();
+  rows_.push_back(std::move(row));
+}
+
+void DatasetWriter::write_entry(const DatasetEntry& e) {
   h5::Handle g = h5::create_group(entries_, std::to_string(e.index));
   h5::write_int_attr(g, "index", e.index);
   h5::write_int_attr(g, "seed", static_cast<std::int64_t>(e.seed));
@@ -103,13 +123,15 @@ void DatasetWriter::add(const DatasetEntry& e) {
   for (const Table& t : e.tables) tables.push_back(&t);
   std::sort(tables.begin(), tables.end(), [](const Table* a, const Table* b) { return a->name < b->name; });
   for (const Table* t : tables) write_table_group(g, *t, header_.compression, header_.lean);
-  DatasetEntry row = e;
-  row.tables.clear();
-  row.config.clear();
-  rows_.push_back(std::move(row));
 }
 
 void DatasetWriter::commit() {
+  guarded([&] { write_parameters_and_close(); });
+  seal_file(tmp_.path());
+  tmp_.commit();
+}
+
+void DatasetWriter::write_parameters_and_close() {
   {
     h5::Handle p = h5::create_group(file_, "parameters");
     const std::size_t rows = rows_.size(), cols = header_.columns.size();
@@ -136,8 +158,6 @@ void DatasetWriter::commit() {
   const herr_t closed = H5Fclose(file_);
   file_ = -1;
   h5::check(closed, "closing " + tmp_.path());
-  seal_file(tmp_.path());
-  tmp_.commit();
 }
 
 DatasetReader::DatasetReader(const std::string& path) : path_(path) {

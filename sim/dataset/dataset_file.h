@@ -82,6 +82,11 @@ class DatasetWriter {
   void commit();
 
  private:
+  template <class Write>
+  void guarded(const Write& write);  // HDF5 failures as one line naming the output
+  void write_entry(const DatasetEntry& entry);
+  void write_parameters_and_close();
+
   std::string path_;
   TempFile tmp_;  // <path>.tmp.<pid>, renamed over path_ by commit()
   DatasetHeader header_;

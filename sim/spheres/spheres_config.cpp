@@ -5,7 +5,8 @@
 //   albedo = 0.8 | [r, g, b]            Lambertian albedo c of the spheres, in [0, 1]
 //   volume_fraction = 0.07              f, in (0, 1) (rsa: at most 0.36)
 //   placement = "poisson" | "rsa" | "volumetric"   (default poisson)
-//   radius = 1.0                        r (units only: a half-space BRDF has no scale)
+//   radius = 1.0                        r in [1e-100, 1e100] (units only: a half-space BRDF has no
+//                                       scale; the bound keeps the depth attribute, depth r, finite)
 //   transmission_threshold = 1e-4       slab deep enough to transmit less than this
 //   depth_mfp = 40                      or: the depth itself, in mean free paths 1/(n pi r^2)
 //   tile = 100                          lateral period in radii (explicit placements)
@@ -46,7 +47,7 @@ void read_spheres_geometry(TomlReader& g, Experiment& e) {
     g.fail("volume_fraction", "is " + format("%g", p.volume_fraction) +
                                   "; random sequential addition jams at ~0.384 and approaches it too slowly, "
                                   "so at most " + format("%g", kRsaMaxVolumeFraction) + " is allowed with placement = \"rsa\"");
-  p.radius = g.number("radius", {0, kInf, true, true}, 1.0);
+  p.radius = g.number("radius", {1e-100, 1e100, false, false}, 1.0);
   p.transmission_threshold = g.number("transmission_threshold", {0, 0.5, true, false}, 1e-4);
   if (g.has("depth_mfp")) {
     p.depth_mfp = g.number("depth_mfp", {0, kMaxDepthMfp, true, false});

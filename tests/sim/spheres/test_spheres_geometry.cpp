@@ -14,6 +14,7 @@
 #include "models/core/warp.h"
 #include "sim/experiment/config_error.h"
 #include "sim/experiment/experiment.h"
+#include "sim/experiment/simulate.h"
 #include "sim/spheres/sphere_field.h"
 #include "sim/spheres/sphere_packing.h"
 
@@ -215,4 +216,28 @@ TEST(SpheresConfig, Errors) {
   e = config_error("albedo = 0.5\nvolume_fraction = 0.1\nradious = 2");
   EXPECT_NE(e.find("radious"), std::string::npos) << e;
   EXPECT_EQ(config_error("albedo = 0.5\nplacement = \"volumetric\""), "");
+  for (const char* r : {"0", "1e-101", "1e101", "inf"})
+    EXPECT_NE(config_error(std::string("albedo = 0.5\nvolume_fraction = 0.1\nradius = ") + r).find("[1e-100, 1e+100]"),
+              std::string::npos) << r;
+}
+
+// The radius sets units only (issue #20, item 3): the tables' sums are the same
+// bits at both ends of its range, and the depth attribute stays finite.
+TEST(SpheresConfig, RadiusSetsUnitsOnly) {
+  const std::string text = "[geometry]\nkind = \"spheres\"\nalbedo = 0.8\nvolume_fraction = 0.1\ntile = 12\n"
+                           "[run]\nseed = 4\nbatches = 2\n[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\n"
+                           "theta_o_bins = 3\nphi_bins = 3\nsamples = 300\n";
+  SimulateOptions o;
+  o.quiet = true;
+  o.threads = 1;
+  const std::vector<Table> ref = simulate(parse_experiment(text, "r.toml"), o);
+  for (const char* r : {"1e-100", "1e100"}) {
+    const std::vector<Table> t = simulate(parse_experiment(text, "r.toml", {std::string("geometry.radius=") + r}), o);
+    ASSERT_EQ(t.size(), ref.size());
+    for (std::size_t k = 0; k < t.size(); ++k) {
+      EXPECT_EQ(t[k].sum, ref[k].sum) << t[k].name << " at radius " << r;
+      const auto depth = t[k].attributes.find("depth");
+      if (depth != t[k].attributes.end()) EXPECT_TRUE(std::isfinite(std::stod(depth->second))) << depth->second;
+    }
+  }
 }
