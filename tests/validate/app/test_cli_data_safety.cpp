@@ -77,6 +77,33 @@ TEST_F(Cli, OutputLocationsAreCheckedBeforeAnyWork) {
   for (const std::string& s : stray({"x.toml", "s.toml", "suite.toml", "afile"})) ADD_FAILURE() << "left behind: " << s;
 }
 
+// A read-only output directory, for every verb that writes: a read-only tmpfs
+// as root (permissions do not stop root), a directory without write
+// permission otherwise.
+TEST_F(Cli, ReadOnlyOutputDirectoriesAreRefusedBeforeAnyWork) {
+  const fs::path ro = dir_ / "ro";
+  fs::create_directories(ro);
+  const bool mounted = geteuid() == 0 && mount("tmpfs", ro.c_str(), "tmpfs", MS_RDONLY, "size=64k") == 0;
+  if (geteuid() == 0 && !mounted) GTEST_SKIP() << "cannot mount a read-only tmpfs here";
+  if (!mounted) fs::permissions(ro, fs::perms::owner_read | fs::perms::owner_exec);
+  write("x.toml", experiment());
+  write("s.toml", slab_experiment());
+  write("suite.toml", "[suite]\nname = \"s\"\n[[case]]\nname = \"c\"\nexperiment = \"x.toml\"\n");
+  write("ds.toml", "[dataset]\nexperiment = \"x.toml\"\n[[parameter]]\nkey = \"geometry.tau0\"\nvalues = [0.3, 0.6]\n");
+  ASSERT_EQ(mcref("dataset " + quote(path("ds.toml")) + " -o " + quote(path("d.h5")) + " --quiet").exit_code, 0);
+  for (const std::string& verb : {"simulate " + quote(path("x.toml")) + " -o " + quote((ro / "o.h5").string()),
+                                  "export-vdb " + quote(path("s.toml")) + " -o " + quote((ro / "g.vdb").string()),
+                                  "validate " + quote(path("suite.toml")) + " -o " + quote((ro / "v").string()),
+                                  "dataset " + quote(path("ds.toml")) + " -o " + quote((ro / "d.h5").string()),
+                                  "merge " + quote(path("d.h5")) + " -o " + quote((ro / "m.h5").string())}) {
+    const Result r = mcref(verb);
+    EXPECT_EQ(r.exit_code, 2) << verb << ": " << r.err;
+    expect_one_line_error(r, {(ro).string(), "not writable"});
+  }
+  if (mounted) umount(ro.c_str());
+  else fs::permissions(ro, fs::perms::owner_all);
+}
+
 TEST_F(Cli, BadValuesAreRefusedNotClamped) {
   // Booleans are booleans: 1 is not true.
   expect_rejected(slab_experiment(), {"geometry.delta_transmission", "true or false"}, "--set geometry.delta_transmission=1");
