@@ -46,7 +46,7 @@ MeasureSize measure_size(const Measure& m, const Experiment& ex) {
   const double hemispheres = ex.kind == "slab" && ex.slab.substrate.kind == SlabSubstrate::Kind::kNone ? 2 : 1;
   const double bins = static_cast<double>(m.theta_o_bins) * m.phi_bins * 3;
   double cells = dirs * hemispheres * ((components + 1) * bins + 2 * (components + 1) * 3);
-  cells += dirs * 3;                                                  // slab _energy, spheres _transmittance
+  cells += dirs * 3;  // slab _energy, spheres _transmittance
   if (ex.kind == "spheres") cells += count(m.theta_i.size()) * m.theta_o_bins * 3 * 3 + 3;  // _modes, _kd
   return {cells, hemispheres * (components * bins + 2 * components * 3 + 3) + 3};
 }
