@@ -1,8 +1,10 @@
 # The reduced pipeline end to end on a tiny mcref dataset (10 one-layer entries,
 # 2 x 2 incident directions, 4 x 4 bins, 4000 paths each): the dataset reader,
-# fit_dataset.py (fits, HDF5 file, error report) and train.py (weights, held-out
-# report); and their rejection of bad input (one line, exit 2, nothing written).
+# fit_dataset.py (fits, HDF5 file, error report), train.py (weights, held-out
+# report), figures.py and predict.py; and their rejection of bad input (one line,
+# exit 2, nothing written).
 import hashlib
+import json
 import os
 import subprocess
 import sys
@@ -137,6 +139,17 @@ def test_train_cli(tiny):
     p2 = run("train.py", str(out), "-o", str(d / "net2.h5"), "--epochs", "3", "--seed", "2", "--quiet")
     with h5py.File(weights) as a, h5py.File(d / "net2.h5") as b:
         assert np.array_equal(a["linear3/weight"][:], b["linear3/weight"][:]) and p2.returncode == 0
+    # the figures of the held-out entry and the evaluation for new layer parameters
+    p = run("figures.py", str(out), str(fits), str(weights), "-o", str(d), "--prefix", "tiny")
+    assert p.returncode == 0, p.stderr
+    assert all((d / f"tiny_{k}.png").stat().st_size > 0 for k in ("bsdf", "lobes", "errors"))
+    (d / "stack.toml").write_text(BASE)
+    p = run("predict.py", str(weights), str(d / "stack.toml"))
+    assert p.returncode == 0, p.stderr
+    lobes = json.loads(p.stdout)
+    assert len(lobes["alpha"]) == 1 and len(lobes["albedo"][0]) == 3 and max(max(lobes["albedo"][0]), 0) <= 1
+    p = run("predict.py", str(weights), str(d / "base.toml").replace("base", "missing"))
+    assert p.returncode == 2 and "missing.toml" in p.stderr
 
 
 def test_bad_input(tmp_path):
