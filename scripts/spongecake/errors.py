@@ -15,16 +15,21 @@ Baselines: "no MS term" (single scattering alone, p = 0: e_ms = 1, e_total = the
 multiple-scattering fraction) and "Lambertian alone" (W1 = 0, W2 at its MAE optimum,
 a weighted median, exact). "noise" is the expected MAE of the exact ms against the
 noisy table, sqrt(2/pi) mean(stderr) / mean |ms| (Gaussian approximation): no
-prediction can be expected to go far below it.
+prediction can be expected to go far below it. "sscheck" is the exact single-scattering
+model at the cell centres against the simulated order 1 (bin averages), relative to
+order 1: where it is large, the bins are too coarse for the lobes (sharp flakes) and
+no model evaluated at the cell centres can match the table.
 """
 import math
 
 import numpy as np
+import torch
 
 from spongecake import torch_model as tm
 
 ALBEDO_BINS = (0.0, 1 / 3, 2 / 3, 1.0 + 1e-12)        # mean gamma over layers and channels
 THICKNESS_BINS = (0.0, 0.5, 2.0, math.inf)            # T summed over the layers
+ALPHA_BINS = (0.0, 0.1, 0.3, 1.0 + 1e-12)             # the smallest alpha of the stack
 
 
 def lambertian_alone(material, split=(1.0, 1.0)):
@@ -43,15 +48,23 @@ def lambertian_alone(material, split=(1.0, 1.0)):
     return float(np.mean(np.abs(ms - w2 * s))), w2
 
 
-def entry_row(index, fiber, albedo, thickness, losses, mean_abs_ms, mean_abs_total, noise_mae):
-    """One entry's description (per layer: fiber flag, RGB albedo, thickness) and errors:
-    for each method name -> MAE in `losses`, and for "none" and "noise", the keys
+def single_scattering_check(material):
+    """sscheck of the module docstring: sum |f_ss - order 1| / sum |order 1|."""
+    order1 = material.total - material.ms
+    ss = tm.single_scattering(material.layers, material.wi, material.wo)
+    return float(torch.sum(torch.abs(ss - order1)) / torch.sum(torch.abs(order1)))
+
+
+def entry_row(index, fiber, alpha, albedo, thickness, losses, mean_abs_ms, mean_abs_total, noise_mae,
+              ss_check=math.nan):
+    """One entry's description (per layer: fiber flag, alpha, RGB albedo, thickness) and errors:
+    for each method name -> MAE in `losses`, and for "none", "noise" and "sscheck", the keys
     <name>_ms and <name>_total (see the module docstring); NaN where ms is empty."""
     ok = mean_abs_ms > 0
     losses = dict(losses, none=mean_abs_ms)
     row = {"entry": int(index), "type": "/".join("fiber" if f else "surface" for f in fiber),
-           "albedo": float(np.mean(albedo)), "thickness": float(np.sum(thickness)), "mean_abs_ms": float(mean_abs_ms),
-           "noise_ms": noise_mae / mean_abs_ms if ok else math.nan}
+           "alpha": float(np.min(alpha)), "albedo": float(np.mean(albedo)), "thickness": float(np.sum(thickness)), "mean_abs_ms": float(mean_abs_ms),
+           "noise_ms": noise_mae / mean_abs_ms if ok else math.nan, "sscheck_ms": ss_check, "sscheck_total": ss_check}
     for name, loss in losses.items():
         row[f"{name}_ms"] = loss / mean_abs_ms if ok else math.nan
         row[f"{name}_total"] = loss / mean_abs_total
@@ -67,7 +80,7 @@ def _label(value, edges, fmt):
 
 def groups(rows):
     """(heading, label -> row indices) for: all entries, flake type(s) (top/bottom),
-    mean albedo, total thickness."""
+    smallest roughness alpha, mean albedo, total thickness."""
     def by(key):
         out = {}
         for i, r in enumerate(rows):
@@ -76,6 +89,7 @@ def groups(rows):
     short = lambda v: f"{v:.2g}" if math.isfinite(v) else "inf"  # noqa: E731
     return [("all", {"all": list(range(len(rows)))}),
             ("flake type", by(lambda r: r["type"])),
+            ("alpha", by(lambda r: _label(r["alpha"], ALPHA_BINS, lambda v: f"{min(v, 1):.2g}"))),
             ("mean albedo", by(lambda r: _label(r["albedo"], ALBEDO_BINS, lambda v: f"{min(v, 1):.2f}"))),
             ("thickness", by(lambda r: _label(r["thickness"], THICKNESS_BINS, short)))]
 
@@ -95,7 +109,11 @@ def report(rows, methods, relative_to="ms"):
     usable = [r for r in rows if r["mean_abs_ms"] > 0]
     head = f"{'group':<28}{'n':>5}" + "".join(f"  {m + ' med/p90/max %':>24}" for m in methods)
     lines = [f"errors relative to {'the multiple scattering (sum|p-ms|/sum|ms|)' if relative_to == 'ms' else 'the whole BSDF (sum|p-ms|/sum|total|)'}"
-             f"; {len(rows) - len(usable)} of {len(rows)} entries with an empty multiple-scattering table left out", head]
+             f"; {len(rows) - len(usable)} of {len(rows)} entries with an empty multiple-scattering table left out"]
+    if "sscheck" in methods:
+        lines.append("(sscheck: the exact single scattering at the cell centres against the simulated order 1, "
+                     "relative to order 1: the resolution limit)")
+    lines.append(head)
     for heading, members in groups(usable):
         for label, idx in members.items():
             cells = []

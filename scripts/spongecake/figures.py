@@ -171,13 +171,14 @@ def main(argv=None):
         ms, total = m.ms.numpy(), m.total.numpy()
         cache[i] = (m, fitted, predicted)
         k = list(fits["index"]).index(i)
-        rows.append(errors.entry_row(i, [l.fiber for l in m.layers], [l.albedo for l in m.layers],
+        rows.append(errors.entry_row(i, [l.fiber for l in m.layers], [l.alpha for l in m.layers], [l.albedo for l in m.layers],
                                      [l.thickness for l in m.layers],
                                      {"network": float(np.mean(np.abs(predicted - ms))), "fit": float(fits["loss"][k]),
                                       "lambert": float(fits["lambertian_loss"][k])},
-                                     float(np.mean(np.abs(ms))), float(np.mean(np.abs(total))), float(fits["noise_mae"][k])))
+                                     float(np.mean(np.abs(ms))), float(np.mean(np.abs(total))), float(fits["noise_mae"][k]),
+                                     errors.single_scattering_check(m)))
     print(f"held-out entries with a fit ({len(rows)}):")
-    print(errors.report(rows, ["network", "fit", "lambert", "none", "noise"], "ms"))
+    print(errors.report(rows, ["network", "fit", "lambert", "none", "noise", "sscheck"], "ms"))
     print(errors.report(rows, ["network", "fit", "lambert", "none"], "total"))
     usable = sorted((r for r in rows if np.isfinite(r["network_ms"])), key=lambda r: r["network_ms"])
     picks = []

@@ -14,7 +14,7 @@ FITS.h5 (mcref_format = "mcref-spongecake-fits", format_version = 1): root attri
 dataset, dataset_sha256 and the dataset's own provenance (dataset_git_commit, ...),
 seed, starts, iterations, split; one row per entry, in entry order:
   index [n]; loss [n] (MAE of the fit); start_losses [n, starts]; lambertian_loss,
-  lambertian_w2 [n]; mean_abs_ms, mean_abs_total, noise_mae [n] (see errors.py);
+  lambertian_w2 [n]; mean_abs_ms, mean_abs_total, noise_mae, ss_check [n] (errors.py);
   vector [n, 8L+1] (fit.lobes_from_vector); lobes/{alpha, thickness} [n, L],
   lobes/{albedo, f0} [n, L, 3], lobes/{w1, w2} [n]; layers/{fiber, alpha, thickness,
   density} [n, L], layers/{albedo, f0, orientation} [n, L, 3] (the entry's stack).
@@ -34,7 +34,7 @@ if __package__ in (None, ""):
 from spongecake import dataset, errors, fit  # noqa: E402
 
 FORMAT = "mcref-spongecake-fits"
-METHODS = ("fit", "lambert", "none", "noise")
+METHODS = ("fit", "lambert", "none", "noise", "sscheck")
 
 
 def fit_entry(index, material, starts, seed, iterations, split):
@@ -45,7 +45,8 @@ def fit_entry(index, material, starts, seed, iterations, split):
     return {"index": index, "loss": loss, "start_losses": start_losses, "lambertian_loss": lambert_loss,
             "lambertian_w2": lambert_w2, "mean_abs_ms": float(torch.mean(torch.abs(material.ms))),
             "mean_abs_total": float(torch.mean(torch.abs(material.total))),
-            "noise_mae": math.sqrt(2 / math.pi) * float(torch.mean(material.ms_stderr)), "vector": vector.numpy(),
+            "noise_mae": math.sqrt(2 / math.pi) * float(torch.mean(material.ms_stderr)),
+            "ss_check": errors.single_scattering_check(material), "vector": vector.numpy(),
             "lobes/alpha": [float(a) for a in lobes.alpha], "lobes/thickness": [float(t) for t in lobes.thickness],
             "lobes/albedo": [np.asarray(a, dtype=np.float64) for a in lobes.albedo],
             "lobes/f0": [np.asarray(f, dtype=np.float64) for f in lobes.f0], "lobes/w1": float(lobes.w1),
@@ -69,9 +70,9 @@ def write(path, fits, attrs):
 
 def row(r):
     """errors.entry_row of one fit_entry result (or one row of a fits file)."""
-    return errors.entry_row(r["index"], r["layers/fiber"], r["layers/albedo"], r["layers/thickness"],
+    return errors.entry_row(r["index"], r["layers/fiber"], r["layers/alpha"], r["layers/albedo"], r["layers/thickness"],
                             {"fit": r["loss"], "lambert": r["lambertian_loss"]}, r["mean_abs_ms"],
-                            r["mean_abs_total"], r["noise_mae"])
+                            r["mean_abs_total"], r["noise_mae"], r.get("ss_check", math.nan))
 
 
 def read(path):
@@ -85,14 +86,19 @@ def read(path):
 
 
 def rows(path):
-    """errors.entry_row of every entry of a fits file."""
-    d, _ = read(path)
+    """errors.entry_row of every entry of a fits file. Files without ss_check (older
+    fit_dataset.py) get it from their dataset file, if it is still there unchanged."""
+    d, attrs = read(path)
+    if "ss_check" not in d and os.path.exists(attrs["dataset"]) and \
+            dataset.provenance(attrs["dataset"])["dataset_sha256"] == attrs["dataset_sha256"]:
+        d["ss_check"] = [errors.single_scattering_check(dataset.read_material(attrs["dataset"], int(i)))
+                         for i in d["index"]]
     return [row({k: v[i] for k, v in d.items()}) for i in range(len(d["index"]))]
 
 
 def print_report(entry_rows, methods=METHODS):
     print(errors.report(entry_rows, methods, "ms"))
-    print(errors.report(entry_rows, [m for m in methods if m != "noise"], "total"))
+    print(errors.report(entry_rows, [m for m in methods if m not in ("noise", "sscheck")], "total"))
 
 
 def main(argv=None):

@@ -113,10 +113,11 @@ def held_out_rows(indices, materials, losses, val_rows, fits_path, attrs, split)
         named = {"network": float(loss), "lambert": errors.lambertian_alone(m, split)[0]}
         if i in floor:
             named["fit"] = float(floor[i])
-        out.append(errors.entry_row(i, [l.fiber for l in m.layers], [l.albedo for l in m.layers],
+        out.append(errors.entry_row(i, [l.fiber for l in m.layers], [l.alpha for l in m.layers], [l.albedo for l in m.layers],
                                     [l.thickness for l in m.layers], named, ms_mean,
                                     float(torch.mean(torch.abs(m.total))),
-                                    float(np.sqrt(2 / np.pi) * torch.mean(m.ms_stderr))))
+                                    float(np.sqrt(2 / np.pi) * torch.mean(m.ms_stderr)),
+                                    errors.single_scattering_check(m)))
     return out
 
 
@@ -168,7 +169,7 @@ def main(argv=None):
                              a.fits, attrs, a.split)
         methods = ["network"] + (["fit"] if all("fit_ms" in r for r in rows) else []) + ["lambert", "none"]
         print(f"held-out entries ({len(val_rows)}):")
-        print(errors.report(rows, methods + ["noise"], "ms"))
+        print(errors.report(rows, methods + ["noise", "sscheck"], "ms"))
         print(errors.report(rows, methods, "total"))
     return 0
 

@@ -97,12 +97,13 @@ def test_lambertian_alone_is_the_exact_optimum():
 
 
 def test_error_rows_and_report():
-    row = errors.entry_row(3, [True, False], [[0.9, 0.9, 0.9], [0.3, 0.3, 0.3]], [1.0, 2.0],
+    row = errors.entry_row(3, [True, False], [0.5, 0.05], [[0.9, 0.9, 0.9], [0.3, 0.3, 0.3]], [1.0, 2.0],
                            {"fit": 0.02, "lambert": 0.05}, 0.1, 0.4, 0.01)
-    assert row["type"] == "fiber/surface" and row["albedo"] == pytest.approx(0.6) and row["thickness"] == 3.0
+    assert row["type"] == "fiber/surface" and row["alpha"] == 0.05 and row["albedo"] == pytest.approx(0.6) and row["thickness"] == 3.0
     assert row["fit_ms"] == pytest.approx(0.2) and row["lambert_ms"] == pytest.approx(0.5) and row["none_ms"] == 1.0
     assert row["fit_total"] == pytest.approx(0.05) and row["none_total"] == pytest.approx(0.25)
-    empty = errors.entry_row(4, [True], [[0.1] * 3], [0.1], {"fit": 0.0, "lambert": 0.0}, 0.0, 0.2, 0.0)
+    empty = errors.entry_row(4, [True], [0.2], [[0.1] * 3], [0.1], {"fit": 0.0, "lambert": 0.0}, 0.0, 0.2, 0.0)
     text = errors.report([row, empty], ["fit", "lambert", "none"])
     assert "1 of 2 entries with an empty multiple-scattering table left out" in text
     assert "flake type fiber/surface" in text and "thickness [2, inf)" in text and "mean albedo [0.33, 0.67)" in text
+    assert "alpha [0, 0.1)" in text
