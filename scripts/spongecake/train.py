@@ -12,7 +12,9 @@ Deterministic for a seed: torch.manual_seed(seed) (initial weights), a
 torch.Generator seeded with seed (shuffling, cell subsets), one torch thread.
 --cells K (not in the paper; default: every cell) evaluates each mini-batch on K
 random cells, an unbiased estimate of the same loss at a fraction of the cost; the
-validation loss always uses every cell.
+validation loss always uses every cell. On sparse (noisy, sharp) tables the training
+first sits at the empty-lobes loss (MAE = mean |ms|) for tens of epochs before it
+moves (validate/FINDINGS.md): give it hundreds of epochs.
 
   /usr/bin/python3 scripts/spongecake/train.py DATA.h5 -o NET.h5 [--epochs 50] [--seed 1]
       [--lr 1e-3] [--batch 32] [--cells K] [--split R,T] [--fits FITS.h5] [--quiet]
