@@ -63,8 +63,9 @@ def entry_row(index, fiber, alpha, albedo, thickness, losses, mean_abs_ms, mean_
     ok = mean_abs_ms > 0
     losses = dict(losses, none=mean_abs_ms)
     row = {"entry": int(index), "type": "/".join("fiber" if f else "surface" for f in fiber),
-           "alpha": float(np.min(alpha)), "albedo": float(np.mean(albedo)), "thickness": float(np.sum(thickness)), "mean_abs_ms": float(mean_abs_ms),
-           "noise_ms": noise_mae / mean_abs_ms if ok else math.nan, "sscheck_ms": ss_check, "sscheck_total": ss_check}
+           "alpha": float(np.min(alpha)), "albedo": float(np.mean(albedo)), "thickness": float(np.sum(thickness)),
+           "mean_abs_ms": float(mean_abs_ms), "noise_ms": noise_mae / mean_abs_ms if ok else math.nan,
+           "sscheck_ms": ss_check, "sscheck_total": ss_check}
     for name, loss in losses.items():
         row[f"{name}_ms"] = loss / mean_abs_ms if ok else math.nan
         row[f"{name}_total"] = loss / mean_abs_total
@@ -108,8 +109,9 @@ def report(rows, methods, relative_to="ms"):
     multiple-scattering table, in %."""
     usable = [r for r in rows if r["mean_abs_ms"] > 0]
     head = f"{'group':<28}{'n':>5}" + "".join(f"  {m + ' med/p90/max %':>24}" for m in methods)
-    lines = [f"errors relative to {'the multiple scattering (sum|p-ms|/sum|ms|)' if relative_to == 'ms' else 'the whole BSDF (sum|p-ms|/sum|total|)'}"
-             f"; {len(rows) - len(usable)} of {len(rows)} entries with an empty multiple-scattering table left out"]
+    what = "the multiple scattering (sum|p-ms|/sum|ms|)" if relative_to == "ms" else "the whole BSDF (sum|p-ms|/sum|total|)"
+    lines = [f"errors relative to {what}; {len(rows) - len(usable)} of {len(rows)} entries with an empty "
+             "multiple-scattering table left out"]
     if "sscheck" in methods:
         lines.append("(sscheck: the exact single scattering at the cell centres against the simulated order 1, "
                      "relative to order 1: the resolution limit)")
