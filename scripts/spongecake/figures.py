@@ -72,7 +72,7 @@ def describe(material, index):
 
 
 def bsdf_figure(out, shown, shape):
-    fig, axes = plt.subplots(len(shown), 5, figsize=(17, 2.6 * len(shown)), squeeze=False)
+    fig, axes = plt.subplots(len(shown), 5, figsize=(17, 2.8 * len(shown)), squeeze=False, layout="constrained")
     for r, (title, sim, fitted, predicted) in enumerate(shown):
         ims = [image(v, shape) for v in (sim, fitted, predicted)]
         top = float(np.percentile(np.abs(ims[0]), 99)) or 1.0
@@ -96,7 +96,7 @@ def bsdf_figure(out, shown, shape):
 
 def lobes_figure(out, shown, shape, theta_i, k_theta):
     n_ti, n_pi, n_to, n_ph = shape
-    fig, axes = plt.subplots(len(shown), 4, figsize=(12, 2.8 * len(shown)), squeeze=False)
+    fig, axes = plt.subplots(len(shown), 4, figsize=(13, 3.2 * len(shown)), squeeze=False, layout="constrained")
     for r, (title, total, single, sim_ms, predicted) in enumerate(shown):
         def lobe(v):
             v = np.asarray(v).mean(-1).reshape(2, n_ti, n_pi, n_to, n_ph)[:, k_theta, 0]
@@ -114,6 +114,8 @@ def lobes_figure(out, shown, shape, theta_i, k_theta):
             ax.set_xlabel("phi (deg)", fontsize=7)
             if c == 0:
                 ax.set_ylabel("cos theta_o (bins)", fontsize=7)
+            else:
+                ax.set_yticklabels([])
             ax.tick_params(labelsize=6)
             fig.colorbar(h, ax=ax, fraction=0.046, pad=0.02).ax.tick_params(labelsize=6)
     fig.savefig(out, dpi=110, bbox_inches="tight")
@@ -121,7 +123,7 @@ def lobes_figure(out, shown, shape, theta_i, k_theta):
 
 
 def errors_figure(out, rows, label):
-    fig, axes = plt.subplots(1, 2, figsize=(10, 3.6))
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.6), layout="constrained")
     for ax, key, name in ((axes[0], "albedo", "mean albedo"), (axes[1], "thickness", "total thickness T")):
         for method, style in (("network", "o"), ("fit", "s"), ("lambert", "^"), ("noise", "x")):
             pts = [(r[key], 100 * r[f"{method}_ms"]) for r in rows if f"{method}_ms" in r and np.isfinite(r[f"{method}_ms"])]
