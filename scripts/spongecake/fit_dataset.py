@@ -7,7 +7,7 @@ form), the Lambertian lobe alone, and no multiple-scattering term, by flake type
 albedo and thickness.
 
   /usr/bin/python3 scripts/spongecake/fit_dataset.py DATA.h5 -o FITS.h5 [--entries 0,1,...]
-      [--starts 3] [--seed 1] [--iterations 30] [--split R,T] [--quiet]
+      [--starts 3] [--seed 1] [--iterations 10] [--split R,T] [--quiet]
   /usr/bin/python3 scripts/spongecake/fit_dataset.py --report FITS.h5     (prints the report again)
 
 FITS.h5 (mcref_format = "mcref-spongecake-fits", format_version = 1): root attributes
@@ -109,7 +109,7 @@ def main(argv=None):
     p.add_argument("--entries", help="comma-separated entry indices (default: all)")
     p.add_argument("--starts", type=int, default=3)
     p.add_argument("--seed", type=int, default=1)
-    p.add_argument("--iterations", type=int, default=30, help="L-BFGS iterations per smoothing stage")
+    p.add_argument("--iterations", type=int, default=10, help="L-BFGS iterations per smoothing stage")
     p.add_argument("--split", type=fit.parse_split, default=(1.0, 1.0), help="Lambertian split R,T (default 1,1)")
     p.add_argument("-q", "--quiet", action="store_true")
     a = p.parse_args(argv)
