@@ -12,7 +12,9 @@ The model is evaluated at the cell centres: incident directions (theta_i, phi_i)
 are points; outgoing bins are uniform in cos(theta_o) and in phi = phi_o - phi_i,
 so the centre is the mean of the edge cosines and the mean of the edge azimuths.
 """
+import hashlib
 import math
+import os
 import tomllib
 
 import h5py
@@ -70,13 +72,23 @@ def layers_from_config(config_text, where):
 
 
 def _multiple_scattering(entry, base, where):
+    """(ms, its standard error, the total or None, the group giving the axes). The standard
+    error of total - order 1 is sqrt(max(se_total^2 - se_order1^2, 0)): each path leaves
+    once, so its order-1 and higher-order scores never share a cell, and the covariance
+    of the two estimates is the variance of the order-1 one (up to a mean-product term
+    of relative size 1/paths)."""
     names = set(entry.keys())
+    value = lambda n: np.asarray(entry[n]["value"], dtype=np.float64)  # noqa: E731
+    se = lambda n: np.asarray(entry[n]["stderr"], dtype=np.float64)  # noqa: E731
+    total = value(base) if base in names else None
     orders = [f"{base}_order2", f"{base}_order3", f"{base}_order4plus"]
     if all(n in names for n in orders):
-        return sum(np.asarray(entry[n]["value"], dtype=np.float64) for n in orders), entry[orders[0]]
-    if base in names and f"{base}_order1_volume" in names:
-        total = np.asarray(entry[base]["value"], dtype=np.float64)
-        return total - np.asarray(entry[f"{base}_order1_volume"]["value"], dtype=np.float64), entry[base]
+        return (sum(value(n) for n in orders), np.sqrt(sum(se(n) ** 2 for n in orders)), total,
+                entry[orders[0]])
+    if total is not None and f"{base}_order1_volume" in names:
+        first = f"{base}_order1_volume"
+        return (total - value(first), np.sqrt(np.maximum(se(base) ** 2 - se(first) ** 2, 0.0)), total,
+                entry[base])
     raise ValueError(f"{where}: needs tables {', '.join(orders)} or {base} and {base}_order1_volume "
                      f"(the dataset's `tables`); it has {sorted(names)}")
 
@@ -118,12 +130,31 @@ def read_material(path, index):
         entry = f[f"entries/{index}"]
         config = entry.attrs["config"]
         layers = layers_from_config(config.decode() if isinstance(config, bytes) else config, where)
-        wis, wos, mss = [], [], []
+        wis, wos, mss, ses, totals = [], [], [], [], []
         for base in HEMISPHERES:
-            ms, group = _multiple_scattering(entry, base, where)
+            ms, se, total, group = _multiple_scattering(entry, base, where)
             wi, wo = _directions(group)
             wis.append(wi)
             wos.append(wo)
             mss.append(ms.reshape(-1, 3))
+            ses.append(se.reshape(-1, 3))
+            totals.append(None if total is None else total.reshape(-1, 3))
     cat = lambda xs: torch.as_tensor(np.concatenate(xs), dtype=tm.DTYPE)  # noqa: E731
-    return Material(layers, cat(wis), cat(wos), cat(mss))
+    return Material(layers, cat(wis), cat(wos), cat(mss), None if any(t is None for t in totals) else cat(totals),
+                    cat(ses))
+
+
+def provenance(path):
+    """The dataset file's identity for files derived from it: its absolute path, SHA-256 of
+    its bytes (the fingerprint) and the root attributes saying what made it."""
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    out = {"dataset": os.path.abspath(path), "dataset_sha256": h.hexdigest()}
+    with h5py.File(path, "r") as f:
+        for key in ("mcref_version", "git_commit", "seed", "entries", "dataset_config", "experiment_file"):
+            if key in f.attrs:
+                v = f.attrs[key]
+                out["dataset_" + key] = v.decode() if isinstance(v, bytes) else v.item() if hasattr(v, "item") else v
+    return out

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Per-material fit of SpongeCake's multiple-scattering lobes (Wang et al. 2022,
 Sec. 5): for one material (its layers and its simulated multiple-scattering
 part, orders >= 2, reflection and transmission), the lobe parameters (alpha',
@@ -19,22 +18,16 @@ of unconstrained variables. W1 and gamma' enter only as W1 gamma'_c (Eq. 11), so
 only those products are identifiable: the optimiser works on them (q = W1 gamma' >= 0)
 and reports W1 = max q, gamma' = q / W1.
 
-  /usr/bin/python3 scripts/spongecake/fit.py DATA.h5 [--entries 0,1,...] [--starts 4] [--seed 1]
-      [--iterations 200] [--split R,T] [-o FITS.json]
-(Runs as a script; to import it, put scripts/ on PYTHONPATH. The module `mcref` is not needed.)
+A library (put scripts/ on PYTHONPATH; the module `mcref` is not needed); the
+command line over a dataset is fit_dataset.py.
 """
 import argparse
-import json
 import math
-import os
-import sys
 from dataclasses import dataclass
 
 import torch
 
-if __package__ in (None, ""):
-    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from spongecake import torch_model as tm  # noqa: E402
+from spongecake import torch_model as tm
 
 ALPHA_RANGE = (0.01, 1.0)
 THICKNESS_RANGE = (0.01, 100.0)
@@ -43,11 +36,14 @@ THICKNESS_RANGE = (0.01, 100.0)
 @dataclass
 class Material:
     """A material and its cells: layers (torch_model.FlakeLayer), directions wi, wo
-    (cells, 3) and the simulated multiple-scattering part ms (cells, 3)."""
+    (cells, 3) and the simulated multiple-scattering part ms (cells, 3); from a
+    dataset also the simulated total (all orders) and the standard error of ms."""
     layers: list
     wi: torch.Tensor
     wo: torch.Tensor
     ms: torch.Tensor
+    total: torch.Tensor = None
+    ms_stderr: torch.Tensor = None
 
 
 def _log_range(a, lo, hi):
@@ -59,20 +55,25 @@ def _logit(u):
 
 
 def lobes_from_vector(x, n_layers, split=(1.0, 1.0), normalise=True):
-    """The unconstrained vector x as torch_model.Lobes. Per layer (8 entries): alpha', T',
-    log q (3), f0' (3), with q_c = W1 gamma'_c; then log W2. Since W1 and gamma' enter
-    only as those products, q >= 0 covers the whole range of (W1 >= 0, gamma' in [0, 1]);
-    normalise=True returns W1 = max q, gamma' = q / W1 (the form's own parameters),
+    """The unconstrained vector x (..., 8 n_layers + 1) as torch_model.Lobes (fields of the
+    batch shape "..."). Per layer (8 entries): alpha', T', log q (3), f0' (3), with
+    q_c = W1 gamma'_c; then log W2. Since W1 and gamma' enter only as those products,
+    q >= 0 covers the whole range of (W1 >= 0, gamma' in [0, 1]); normalise=True returns
+    W1 = max q (over layers and channels), gamma' = q / W1 (the form's own parameters),
     normalise=False W1 = 1, gamma' = q (the same values, for the optimiser)."""
     alpha, thickness, q, f0 = [], [], [], []
     for k in range(n_layers):
-        v = x[8 * k:8 * k + 8]
-        alpha.append(_log_range(v[0], *ALPHA_RANGE))
-        thickness.append(_log_range(v[1], *THICKNESS_RANGE))
-        q.append(torch.exp(v[2:5]))
-        f0.append(torch.sigmoid(v[5:8]))
-    w1 = torch.max(torch.stack([torch.max(t) for t in q])) if normalise else torch.ones((), dtype=tm.DTYPE)
-    return tm.Lobes(alpha, thickness, [t / w1 for t in q], f0, w1=w1, w2=torch.exp(x[-1]),
+        v = x[..., 8 * k:8 * k + 8]
+        alpha.append(_log_range(v[..., 0], *ALPHA_RANGE))
+        thickness.append(_log_range(v[..., 1], *THICKNESS_RANGE))
+        q.append(torch.exp(v[..., 2:5]))
+        f0.append(torch.sigmoid(v[..., 5:8]))
+    if normalise:
+        w1 = torch.amax(torch.stack(q, dim=-2), dim=(-2, -1))
+        albedo = [t / w1[..., None] for t in q]
+    else:
+        w1, albedo = torch.ones(x.shape[:-1], dtype=tm.DTYPE), q
+    return tm.Lobes(alpha, thickness, albedo, f0, w1=w1, w2=torch.exp(x[..., -1]),
                     split_reflection=split[0], split_transmission=split[1])
 
 
@@ -161,13 +162,6 @@ def fit(material, n_starts=4, seed=1, iterations=200, split=(1.0, 1.0), x0=None)
     return best[0], lobes_from_vector(best[1], n, split), best[1], losses
 
 
-def lobes_dict(lobes):
-    f = lambda v: [float(t) for t in torch.as_tensor(v).reshape(-1)]  # noqa: E731
-    return {"alpha": [float(a) for a in lobes.alpha], "thickness": [float(t) for t in lobes.thickness],
-            "albedo": [f(a) for a in lobes.albedo], "f0": [f(a) for a in lobes.f0], "w1": float(lobes.w1),
-            "w2": float(lobes.w2), "split": [lobes.split_reflection, lobes.split_transmission]}
-
-
 def parse_split(text):
     try:
         r, t = (float(v) for v in text.split(","))
@@ -176,55 +170,3 @@ def parse_split(text):
     if not (r >= 0 and t >= 0 and math.isfinite(r) and math.isfinite(t)):
         raise argparse.ArgumentTypeError(f"--split = {text!r}: R and T must be finite and >= 0")
     return r, t
-
-
-def main(argv=None):
-    from spongecake import dataset
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("data", help="an mcref dataset file (SpongeCake entries)")
-    ap.add_argument("--entries", help="comma-separated entry indices (default: every entry)")
-    ap.add_argument("--starts", type=int, default=4)
-    ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--iterations", type=int, default=200)
-    ap.add_argument("--split", type=parse_split, default=(1.0, 1.0), help="Lambertian split R,T (default 1,1)")
-    ap.add_argument("-o", "--output", help="write the fits as JSON (atomically)")
-    a = ap.parse_args(argv)
-    for key, v in (("--starts", a.starts), ("--iterations", a.iterations)):
-        if v < 1:
-            ap.error(f"{key} = {v} is out of range (allowed: >= 1)")
-    if a.seed < 0:
-        ap.error(f"--seed = {a.seed} is out of range (allowed: >= 0)")
-    try:
-        available = dataset.entry_indices(a.data)
-        try:
-            entries = available if a.entries is None else [int(v) for v in a.entries.split(",")]
-        except ValueError:
-            raise ValueError(f"--entries = {a.entries!r}: expected comma-separated entry indices")
-        missing = [i for i in entries if i not in available]
-        if missing:
-            raise ValueError(f"{a.data}: --entries {missing} not in the file (entries: {available[:10]}...)")
-        materials = [(i, dataset.read_material(a.data, i)) for i in entries]  # every entry checked first
-    except (OSError, KeyError, ValueError) as e:
-        print(f"fit: {e}", file=sys.stderr)
-        return 2
-    results = []
-    print("entry layers  loss        mean|ms|    loss/mean|ms|  w1      w2")
-    for i, m in materials:
-        value, lobes, _, losses = fit(m, a.starts, a.seed, a.iterations, a.split)
-        scale = float(torch.mean(torch.abs(m.ms)))
-        results.append({"entry": i, "loss": value, "mean_abs_ms": scale, "start_losses": losses, "lobes": lobes_dict(lobes)})
-        print(f"{i:5d} {len(m.layers):6d}  {value:.4e}  {scale:.4e}  {value / scale if scale > 0 else float('nan'):13.4f}"
-              f"  {float(lobes.w1):.4f}  {float(lobes.w2):.4f}")
-    if a.output:
-        doc = {"dataset": os.path.abspath(a.data), "seed": a.seed, "starts": a.starts, "iterations": a.iterations,
-               "split": list(a.split), "loss": "MAE over every cell and channel (reflection and transmission), orders >= 2",
-               "fits": results}
-        tmp = a.output + ".tmp"
-        with open(tmp, "w") as f:
-            json.dump(doc, f, indent=1)
-        os.replace(tmp, a.output)
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

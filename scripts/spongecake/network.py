@@ -1,0 +1,143 @@
+"""SpongeCake's parameter-mapping network (Wang et al. 2022, Sec. 5, Figs. 5-6): an
+MLP with 3 hidden layers of 128 units that maps a stack's layer parameters to the
+parameters of the two multiple-scattering lobes. One network per layer count.
+
+Inputs, per layer (top first), as listed in Sec. 5: alpha, gamma (RGB), T, f0 (RGB),
+the flake type k (0 surface, 1 fibre) and the orientation omega_p (3); alpha and T
+enter as logarithms (they are sampled log-uniformly), and every input is
+standardised with the training set's mean and standard deviation (stored).
+Outputs: the unconstrained vector of fit.lobes_from_vector (per layer alpha', T',
+log W1 gamma' (RGB), f0' (RGB); then log W2), so the network's lobes have the
+ranges of the per-material fit. k and omega_p are passed through unchanged
+(torch_model.modified_layers keeps them). Hidden activation: ReLU (the paper does
+not name one). The last layer's bias starts at alpha' = T' = mid-range (log),
+W1 gamma' = 0.3, f0' = 0.5, W2 = 0.05, so the first lobes are of the data's order.
+
+Weights file (HDF5, mcref_format = "mcref-spongecake-network", format_version = 1):
+datasets input_mean, input_std [12 L], linear<j>/weight [out, in] and linear<j>/bias
+[out] for j = 0..3 (torch.nn.Linear, y = x W^T + b), history/{train_loss, val_loss}
+[epochs] and validation_index; attributes layers (L), hidden, activation,
+inputs, outputs, alpha_range, thickness_range, split, the training settings and the
+dataset's provenance (dataset, dataset_sha256, ...).
+"""
+import math
+import os
+
+import h5py
+import numpy as np
+import torch
+
+from spongecake import fit
+from spongecake import torch_model as tm
+
+FORMAT = "mcref-spongecake-network"
+HIDDEN = (128, 128, 128)
+INPUTS = ("log_alpha", "gamma_r", "gamma_g", "gamma_b", "log_thickness", "f0_r", "f0_g", "f0_b", "fiber",
+          "omega_x", "omega_y", "omega_z")
+OUTPUTS = ("alpha", "thickness", "log_q_r", "log_q_g", "log_q_b", "f0_r", "f0_g", "f0_b")  # fit.lobes_from_vector
+
+
+def input_names(n_layers):
+    return [f"layer{k}.{n}" for k in range(n_layers) for n in INPUTS]
+
+
+def output_names(n_layers):
+    return [f"layer{k}.{n}" for k in range(n_layers) for n in OUTPUTS] + ["log_w2"]
+
+
+def _rgb(v):
+    v = np.asarray(v, dtype=np.float64).reshape(-1)
+    return np.repeat(v, 3) if v.size == 1 else v
+
+
+def features(layers):
+    """The raw (unstandardised) input vector of one stack of torch_model.FlakeLayer."""
+    out = []
+    for l in layers:
+        w = np.asarray(l.orientation, dtype=np.float64)
+        out += [math.log(l.alpha), *_rgb(l.albedo), math.log(l.thickness * l.density), *_rgb(l.f0),
+                float(bool(l.fiber)), *(w / np.linalg.norm(w))]
+    return out
+
+
+def batch_layers(stacks):
+    """A list of stacks (each a list of FlakeLayer) as one stack of FlakeLayers whose fields
+    have a leading batch axis (B, 1[, 3]), to broadcast against (cells, 3) directions."""
+    def field(k, name, rgb=False):
+        v = [_rgb(getattr(s[k], name)) if rgb else getattr(s[k], name) for s in stacks]
+        t = torch.as_tensor(np.asarray(v, dtype=np.float64), dtype=tm.DTYPE)
+        return t[:, None, :] if t.dim() == 2 else t[:, None]
+    return [tm.FlakeLayer(fiber=field(k, "fiber").bool(), alpha=field(k, "alpha"), thickness=field(k, "thickness"),
+                          albedo=field(k, "albedo", True), f0=field(k, "f0", True),
+                          orientation=field(k, "orientation"), density=field(k, "density"))
+            for k in range(len(stacks[0]))]
+
+
+class Mapping(torch.nn.Module):
+    """features (B, 12 L) -> fit.lobes_from_vector vectors (B, 8 L + 1)."""
+
+    def __init__(self, n_layers, mean, std):
+        super().__init__()
+        self.n_layers = n_layers
+        sizes = (12 * n_layers,) + HIDDEN + (8 * n_layers + 1,)
+        self.linear = torch.nn.ModuleList(torch.nn.Linear(a, b, dtype=tm.DTYPE) for a, b in zip(sizes[:-1], sizes[1:]))
+        self.register_buffer("mean", torch.as_tensor(mean, dtype=tm.DTYPE))
+        self.register_buffer("std", torch.as_tensor(std, dtype=tm.DTYPE))
+        with torch.no_grad():
+            start = ([0.0, 0.0] + [math.log(0.3)] * 3 + [0.0] * 3) * n_layers + [math.log(0.05)]
+            self.linear[-1].bias.copy_(torch.as_tensor(start, dtype=tm.DTYPE))
+
+    def forward(self, x):
+        h = (x - self.mean) / self.std
+        for k, lin in enumerate(self.linear):
+            h = lin(h)
+            if k + 1 < len(self.linear):
+                h = torch.relu(h)
+        return h
+
+    def lobes(self, stacks, split=(1.0, 1.0)):
+        """Lobes (fields (B, 1[, 3])) for a list of stacks; normalised (W1 = max W1 gamma')."""
+        x = self(torch.as_tensor(np.asarray([features(s) for s in stacks]), dtype=tm.DTYPE))
+        return fit.lobes_from_vector(x[:, None, :], self.n_layers, split)
+
+
+def save(path, net, attrs, history, validation_index):
+    tmp = path + ".tmp"
+    with h5py.File(tmp, "w") as f:
+        f.attrs["mcref_format"] = FORMAT
+        f.attrs["format_version"] = 1
+        f.attrs["layers"] = net.n_layers
+        f.attrs["hidden"] = list(HIDDEN)
+        f.attrs["activation"] = "relu"
+        f.attrs["inputs"] = input_names(net.n_layers)
+        f.attrs["outputs"] = output_names(net.n_layers)
+        f.attrs["alpha_range"] = list(fit.ALPHA_RANGE)
+        f.attrs["thickness_range"] = list(fit.THICKNESS_RANGE)
+        for k, v in attrs.items():
+            f.attrs[k] = v
+        f["input_mean"] = net.mean.numpy()
+        f["input_std"] = net.std.numpy()
+        for j, lin in enumerate(net.linear):
+            f[f"linear{j}/weight"] = lin.weight.detach().numpy()
+            f[f"linear{j}/bias"] = lin.bias.detach().numpy()
+        for k, v in history.items():
+            f[f"history/{k}"] = np.asarray(v, dtype=np.float64)
+        f["validation_index"] = np.asarray(validation_index, dtype=np.int64)
+    os.replace(tmp, path)
+
+
+def load(path):
+    """(Mapping, attributes) from a weights file; errors name the file and what is wrong."""
+    with h5py.File(path, "r") as f:
+        if f.attrs.get("mcref_format") != FORMAT:
+            raise ValueError(f"{path}: not a network weights file (mcref_format = {FORMAT!r} expected)")
+        if int(f.attrs["format_version"]) != 1 or list(f.attrs["hidden"]) != list(HIDDEN):
+            raise ValueError(f"{path}: format_version {f.attrs['format_version']}, hidden {list(f.attrs['hidden'])} "
+                             f"(this script reads version 1, hidden {list(HIDDEN)})")
+        net = Mapping(int(f.attrs["layers"]), f["input_mean"][:], f["input_std"][:])
+        with torch.no_grad():
+            for j, lin in enumerate(net.linear):
+                lin.weight.copy_(torch.as_tensor(f[f"linear{j}/weight"][:]))
+                lin.bias.copy_(torch.as_tensor(f[f"linear{j}/bias"][:]))
+        attrs = dict(f.attrs)
+    return net, attrs
