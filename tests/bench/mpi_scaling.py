@@ -16,7 +16,7 @@ Then rank 0's assembly time per entry of a paper-sized SpongeCake entry
 `mcref merge` of the finished file (the same reads and writes as the
 assembly from the parts), and the bytes per entry.
 
-  tests/bench/mpi_scaling.py build/mcref [REPEAT]
+  tests/bench/mpi_scaling.py build/mcref [REPEAT]   (REPEAT 0: the assembly only)
 """
 import os
 import re
@@ -87,7 +87,7 @@ def main():
                          "--threads", "1", "--quiet", "--set", "run.batches=8", "--set", "measure.0.samples=200000"],
         }
         print(f"load average before: {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
-        for verb, args in verbs.items():
+        for verb, args in verbs.items() if repeat > 0 else []:
             times = {1: [], 2: []}
             for r in range(repeat):
                 for n in ((1, 2) if r % 2 == 0 else (2, 1)):
@@ -113,8 +113,8 @@ def main():
         for lean in ([], ["--lean"]):
             if os.path.exists("merged.h5"):
                 os.remove("merged.h5")
-            wall, _ = run([mcref, "merge", "paper.h5", "-o", "merged.h5", "--quiet"] + lean)
-            print(f"assembly{' (lean)' if lean else ''}: {wall / 8:.2f} s an entry, "
+            wall, cpu = run([mcref, "merge", "paper.h5", "-o", "merged.h5", "--quiet"] + lean)
+            print(f"assembly{' (lean)' if lean else ''}: {wall / 8:.2f} s an entry ({cpu / 8:.2f} s CPU), "
                   f"{os.path.getsize('merged.h5') / 8 / 1e6:.1f} MB an entry")
     finally:
         shutil.rmtree(work)
