@@ -3,8 +3,8 @@
 
 Runs entries one at a time: `mcref dataset --shard i/(E/2) --stop-after 1`,
 for i < E/2 (E entries), computes entry i alone and writes its part; the
-shard's other entry, i + E/2, is left, so nothing is assembled. Prints CSV, one row an
-entry:
+shard's other entry, i + E/2, is left, so nothing is assembled. Prints CSV,
+one row an entry:
   seconds  the entry's wall time as mcref reports it (simulation and part write);
   cpu      the entry's process CPU time (user + system, all threads): the CPU
            time of the run less that of a run which stops before any entry
@@ -55,7 +55,7 @@ def run(cmd):
 
 
 def relative_errors(part):
-    """(cells, median relative stderr) of the multiple scattering and of the total tables."""
+    """Cells the multiple scattering reaches; median relative stderr there, and over the total's cells."""
     import h5py
     import numpy as np
     with h5py.File(part, "r") as f:
