@@ -33,25 +33,12 @@ import random
 import re
 import shutil
 import statistics
-import subprocess
-import sys
 import tempfile
-import time
+
+from timed_run import timed_run
 
 DATASETS = {"spongecake_1layer.toml": 4000, "spongecake_2layer.toml": 12000}
 ORDERS = ["order2", "order3", "order4plus"]
-
-
-def run(cmd):
-    """Runs cmd; returns (stderr, wall seconds, CPU seconds of the process and its threads)."""
-    t0 = time.perf_counter()
-    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    err = p.stderr.read()
-    _, status, ru = os.wait4(p.pid, 0)
-    wall = time.perf_counter() - t0
-    if os.waitstatus_to_exitcode(status) != 0:
-        sys.exit(err.strip())
-    return err, wall, ru.ru_utime + ru.ru_stime
 
 
 def relative_errors(part):
@@ -110,14 +97,14 @@ def main():
         for name, entries in DATASETS.items():
             cmd = [args.mcref, "dataset", os.path.join(work, name), "-o", out, "--shard", f"0/{entries // 2}",
                    "--threads", str(args.threads), "--stop-after", "0"]
-            planning[name] = statistics.median(run(cmd)[2] for _ in range(3))
+            planning[name] = statistics.median(timed_run(cmd)[2] for _ in range(3))
         print(f"# samples {scaled} per direction and batch, {args.threads} threads; CPU of planning (subtracted): " +
               ", ".join(f"{n} {s:.2f} s" for n, s in planning.items()))
         print("dataset,entry,seconds,cpu,wall,rays" + (",ms_cells,ms_rse,total_rse" if args.orders else ""))
         for name, i in sample:
             entries = DATASETS[name]
             shutil.rmtree(out + ".parts", ignore_errors=True)
-            err, wall, cpu = run([args.mcref, "dataset", os.path.join(work, name), "-o", out, "--shard",
+            err, wall, cpu = timed_run([args.mcref, "dataset", os.path.join(work, name), "-o", out, "--shard",
                                   f"{i}/{entries // 2}", "--threads", str(args.threads), "--stop-after", "1"])
             m = re.search(r"entries \(1 simulated.*\), ([0-9.e+]+) rays in ([0-9.]+) s", err)
             row = f"{name},{i},{m.group(2)},{cpu - planning[name]:.2f},{wall:.3f},{m.group(1)}"

@@ -25,7 +25,8 @@ import statistics
 import subprocess
 import sys
 import tempfile
-import time
+
+from timed_run import timed_run
 
 MPIRUN = ["mpirun", "-q", "--allow-run-as-root", "--oversubscribe"]
 BASE = """[geometry]
@@ -57,17 +58,6 @@ distribution = "log_uniform"
 """
 
 
-def run(cmd):
-    """(wall, CPU) seconds of cmd and every process it waited for."""
-    t0 = time.perf_counter()
-    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    err = p.stderr.read()
-    _, status, ru = os.wait4(p.pid, 0)
-    if os.waitstatus_to_exitcode(status) != 0:
-        sys.exit(err.decode().strip())
-    return time.perf_counter() - t0, ru.ru_utime + ru.ru_stime
-
-
 def spread(values):
     return f"median {statistics.median(values):.3f} [{min(values):.3f}, {max(values):.3f}]"
 
@@ -94,7 +84,7 @@ def main():
                     shutil.rmtree("out.h5.parts", ignore_errors=True)
                     if os.path.exists("out.h5"):
                         os.remove("out.h5")
-                    times[n].append(run(MPIRUN + ["-np", str(n), mcref] + args))
+                    times[n].append(timed_run(MPIRUN + ["-np", str(n), mcref] + args)[1:])  # (wall, CPU)
             wall = [a[0] / (2 * b[0]) for a, b in zip(times[1], times[2])]
             cpu = [a[1] / b[1] for a, b in zip(times[1], times[2])]
             print(f"{verb}: wall np=1 {spread([t[0] for t in times[1]])} s, np=2 {spread([t[0] for t in times[2]])} s; "
@@ -113,7 +103,7 @@ def main():
         for lean in ([], ["--lean"]):
             if os.path.exists("merged.h5"):
                 os.remove("merged.h5")
-            wall, cpu = run([mcref, "merge", "paper.h5", "-o", "merged.h5", "--quiet"] + lean)
+            _, wall, cpu = timed_run([mcref, "merge", "paper.h5", "-o", "merged.h5", "--quiet"] + lean)
             print(f"assembly{' (lean)' if lean else ''}: {wall / 8:.2f} s an entry ({cpu / 8:.2f} s CPU), "
                   f"{os.path.getsize('merged.h5') / 8 / 1e6:.1f} MB an entry")
     finally:
