@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Strong scaling of mcref under mpirun (issue #17), and rank 0's assembly.
 
-The same dataset (24 slab entries of about 0.5 s) and the same simulate run
+The same dataset (24 slab entries of about 0.3 s of CPU) and the same simulate run
 (8 batches) on 1 and 2 ranks of one thread each, REPEAT times, the order of
 np = 1 and np = 2 alternating. For each repetition:
   wall efficiency = wall(1) / (2 x wall(2));
