@@ -11,6 +11,7 @@ reports the rate at which the ranks write parts while they compute.
 
   tests/bench/project_schedule.py costs.csv --paths-scale 0.1 --entry-bytes 1.7e8 \\
       --fixed-seconds 7.4 --assembly-s 0.85 --lean-assembly-s 0.65 --cores 64 1024
+(costs.csv: dataset_entry_costs.py's output; lines starting with # are skipped.)
 """
 import argparse
 import csv
@@ -31,6 +32,7 @@ def makespan(costs, cores):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("costs")
+    ap.add_argument("--column", default="cpu", help="the CSV column of an entry's cost (cpu: CPU seconds; seconds: wall)")
     ap.add_argument("--paths-scale", type=float, default=1.0, help="the paths scale the costs were measured at")
     ap.add_argument("--fixed-seconds", type=float, default=0.0,
                     help="an entry's cost without paths (samples = 1): kept as is, the rest scaled by 1/paths-scale")
@@ -42,8 +44,8 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     args = ap.parse_args()
     measured = {name: [] for name in DATASETS}
-    for row in csv.DictReader(open(args.costs)):
-        s = float(row["seconds"])
+    for row in csv.DictReader(line for line in open(args.costs) if not line.startswith("#")):
+        s = float(row[args.column])
         measured[row["dataset"]].append(args.fixed_seconds + max(0.0, s - args.fixed_seconds) / args.paths_scale)
     rng = random.Random(args.seed)
     total = sum(statistics.mean(v) * DATASETS[n] for n, v in measured.items() if v)
@@ -69,7 +71,10 @@ def main():
               f"ideal {total / cores / 3600:.2f} h, scheduling efficiency {total / cores / compute:.3f}); "
               f"rank 0 assembly {assembly['full'] / 60:.1f} min full" +
               (f", {assembly['lean'] / 60:.1f} min lean" if args.lean_assembly_s else "") +
-              f"; parts written at {write_rate:.0f} MB/s on average while computing")
+              f"; parts written at {write_rate:.0f} MB/s on average while computing; "
+              f"rank 0 answers {cores / (total / sum(DATASETS.values())):.1f} requests/s; "
+              f"wall (compute, then assembly) {(compute + assembly['full']) / 3600:.2f} h full" +
+              (f", {(compute + assembly['lean']) / 3600:.2f} h lean" if args.lean_assembly_s else ""))
 
 
 if __name__ == "__main__":
