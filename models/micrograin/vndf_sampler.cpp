@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "models/core/arc_sine.h"
 #include "models/core/small_angle.h"
 #include "models/micrograin/projected_area.h"
 #include "models/micrograin/unit_space.h"
@@ -70,12 +71,24 @@ double VndfSampler::inverse_sigma(double ci, double si, double xi_area) const {
   return (top + fy * (bottom - top)) * (si / kTableScale);
 }
 
+SinCos VndfSampler::sample_theta(double tau0, double ci, double si, double xi) const {
+  // 1 - tau(i', 0) = exp(-rho' sigma(i', 0)) = (1 - tau0)^(sigma(i', 0) / pi), rho' = -ln(1 - tau0) / pi.
+  // pow and log rather than expm1 and log1p (a third of their latency here):
+  // the arguments' rounding moves Xi by at most ~4e-16 / tau0 in absolute
+  // terms, far below any bin.
+  const double log_gap = std::log(1 - tau0);
+  const double gap_i0 = std::exp(log_gap * sigma_at_zero(ci) / kPi);
+  const double xi_area = std::log(1 - xi * (1 - gap_i0)) * (kPi / log_gap);  // Eq. 23: sigma(i', cos theta) = Xi
+  if (xi_area <= shadow_floor(ci)) {  // Eq. 25: cos^2 theta = 1 - Xi / pi, sin^2 theta = Xi / pi
+    const double s2 = std::max(0.0, xi_area / kPi);
+    return {std::sqrt(s2), std::sqrt(std::max(0.0, 1 - s2))};
+  }
+  const double ct = inverse_sigma(ci, si, xi_area);
+  return {std::sqrt(std::max(0.0, 1 - ct * ct)), ct};
+}
+
 double VndfSampler::sample_cos_theta(double tau0, double ci, double si, double xi) const {
-  const double rho = -std::log1p(-tau0) / kPi;  // unit-space density
-  const double tau_i0 = -std::expm1(-rho * sigma_at_zero(ci));
-  const double area = -std::log1p(-xi * tau_i0) / rho;  // Eq. 23: sigma(i', cos theta) = Xi
-  if (area <= shadow_floor(ci)) return std::sqrt(std::max(0.0, 1 - area / kPi));  // Eq. 25
-  return inverse_sigma(ci, si, area);
+  return sample_theta(tau0, ci, si, xi).cos;
 }
 
 PhiConditional::PhiConditional(Vec3 iu, double ct)
@@ -84,43 +97,55 @@ PhiConditional::PhiConditional(Vec3 iu, double ct)
 PhiConditional::PhiConditional(double ci, double si, double ct, double st) {
   a = si * st;
   b = ci * ct;
-  phi_q = kPi;
-  double sin_q = 0, cos_q = -1;
-  if (si > ct) {  // part of the normals at this theta' faces away from i' (Listing 3, line 8)
-    cos_q = std::clamp(-b / a, -1.0, 1.0);
-    sin_q = std::sqrt(1 - cos_q * cos_q);
-    phi_q = std::acos(cos_q);
+  shadow = si > ct;  // equivalently a > b
+  if (shadow) {
+    phi_q = 0.5 * kPi + asin_series(b / a);  // acos(-b / a)
+    mass = 2 * (std::sqrt((a - b) * (a + b)) + b * phi_q);  // a sin phi_q = sqrt(a^2 - b^2)
+  } else {
+    phi_q = kPi;
+    mass = 2 * kPi * b;
   }
-  norm = 1 / (2 * (a * sin_q + b * phi_q));
-  h0 = std::max(0.0, norm * (a * cos_q + b));
-  const double inv_q = 1 / phi_q;
-  h1 = inv_q - h0;
-  slope = (h0 - h1) * inv_q;
 }
 
-double PhiConditional::tent_inverse(double u) const {
-  // CDF for phi >= 0: 1/2 + h1 phi + slope phi^2 / 2; symmetric below.
-  const double v = std::fabs(u - 0.5);
-  const double r = h1 * h1 + 2 * slope * v;
-  const double p = std::min(phi_q, 2 * v / (h1 + std::sqrt(std::max(0.0, r))));  // stable root
-  return u < 0.5 ? -p : p;
+double PhiConditional::tent_pdf(double phi) const {
+  // Eq. 28 with P~(+-phi_q) = h0 and unit mass: (t0 - t1 y) / (mass phi_q).
+  return std::fabs(phi) > phi_q ? 0.0 : (t0() - t1() * std::fabs(phi) / phi_q) / (mass * phi_q);
+}
+
+double PhiConditional::tent_fraction(double v) const {
+  // The tent's CDF from 0 to y phi_q is (t0 y - t1 y^2 / 2) / mass = v (Eq. 30);
+  // its stable root. With a shadow, t0 = t1 = mass: y = 2 v / (1 + sqrt(1 - 2 v)).
+  const double k0 = shadow ? 1.0 : a + b, k1 = shadow ? 1.0 : 2 * a, m = shadow ? 1.0 : 2 * b;  // t0, t1, mass / (pi or mass)
+  const double r = k0 * k0 - 2 * k1 * m * v;
+  return std::min(1.0, 2 * m * v / (k0 + std::sqrt(std::max(0.0, r))));
+}
+
+double PhiConditional::tent_inverse(double u) const {  // Eq. 31
+  return std::copysign(phi_q * tent_fraction(std::fabs(u - 0.5)), u - 0.5);
 }
 
 TriangleCut PhiConditional::cut(double u_s) const {
   const double x = tent_inverse(u_s);
-  return cut_at(u_s, x, std::sin(x), std::cos(x));
+  return cut_at(u_s, x, std::fabs(x) / phi_q, std::sin(x), std::cos(x));
 }
 
-TriangleCut PhiConditional::cut_at(double u_s, double x, double sin_x, double cos_x) const {
-  const double f = norm * (a * cos_x + b), F = 0.5 + norm * (a * sin_x + b * x), df = -norm * a * sin_x;
-  return triangle_cut(u_s, x, f, F, df, tent_pdf(x));
+TriangleCut PhiConditional::cut_at(double u_s, double x, double y, double sin_x, double cos_x) const {
+  // Listing 3, lines 19–24, every term times mass phi_q: f = a cos x + b, the
+  // CDF's excess (2 u_s - 1) mass - 2 (a sin x + b x), f' = -a sin x, tent t0 - t1 y.
+  const double g = a * cos_x + b, d = (2 * u_s - 1) * mass - 2 * (a * sin_x + b * x);
+  return triangle_cut_scaled(x, g * phi_q, -a * sin_x * phi_q, t0() - t1() * y, d * phi_q);
 }
 
 PhiSample PhiConditional::sample(double u_s, double u_t) const {
-  const double x = tent_inverse(u_s), sin_x = std::sin(x), cos_x = std::cos(x);
+  const double y = tent_fraction(std::fabs(u_s - 0.5)), x = std::copysign(phi_q * y, u_s - 0.5);
+  const SinCos sx = sincos_within_pi(x);  // the series (small_angle.h)
+  const double sin_x = sx.sin, cos_x = sx.cos;
+  // The cut of cut_at, its point at u_t in one step (triangle_cut_point).
+  const double g = a * cos_x + b, d_cdf = (2 * u_s - 1) * mass - 2 * (a * sin_x + b * x);
+  const double end = triangle_cut_point(x, g * phi_q, -a * sin_x * phi_q, t0() - t1() * y, d_cdf * phi_q, u_t);
   // phi = x + d, d the step along the cut (|d| < 1.3 everywhere, see the
   // tests): its sine and cosine by angle addition, without a second sincos.
-  const double d = std::clamp(cut_at(u_s, x, sin_x, cos_x).point(u_t), -phi_q, phi_q) - x;
+  const double d = std::clamp(end, -phi_q, phi_q) - x;
   const SinCos r = sincos_small(d);
   return {x + d, cos_x * r.cos - sin_x * r.sin, sin_x * r.cos + cos_x * r.sin};
 }
@@ -131,11 +156,11 @@ double VndfSampler::sample_phi(Vec3 iu, double ct, double u_s, double u_t) {
 
 Vec3 VndfSampler::sample_unit(double tau0, Vec3 iu, double u1, double u2, double u3) const {
   const double ci = iu.z, si = std::sqrt(std::max(0.0, 1 - ci * ci));
-  const double ct = sample_cos_theta(tau0, ci, si, u1), st = std::sqrt(std::max(0.0, 1 - ct * ct));
-  const PhiSample p = PhiConditional(ci, si, ct, st).sample(u2, u3);
-  const Vec3 m{p.cos_phi * st, p.sin_phi * st, ct};
+  const SinCos t = sample_theta(tau0, ci, si, u1);
+  const PhiSample p = PhiConditional(ci, si, t.cos, t.sin).sample(u2, u3);
+  const Vec3 m{p.cos_phi * t.sin, p.sin_phi * t.sin, t.cos};
   if (!(si > 0)) return m;
-  const double rx = iu.x / si, ry = iu.y / si;  // Listing 4: rotate to the azimuth of i'
+  const double inv_si = 1 / si, rx = iu.x * inv_si, ry = iu.y * inv_si;  // Listing 4: rotate to the azimuth of i'
   return {m.x * rx - m.y * ry, m.x * ry + m.y * rx, m.z};
 }
 
