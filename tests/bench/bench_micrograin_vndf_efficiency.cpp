@@ -23,7 +23,8 @@
 // plus evaluation; the thread's CPU time) and the efficiency ratio
 //   eff_ratio = (var_ndf t_ndf) / (var_vndf t_vndf)   (> 1: vNDF more efficient),
 // with var_ratio = var_ndf / var_vndf and time_ratio = t_vndf / t_ndf beside
-// it. Both samplers draw the same number of samples. Run with
+// it. Both samplers draw the same number of samples (the same uniforms), and
+// every repetition new ones. Run with
 // --benchmark_repetitions=N (N >= 5) for the spread; tests/bench/vndf_efficiency.py
 // turns the JSON output into the table and the plot.
 #include <benchmark/benchmark.h>
@@ -112,7 +113,9 @@ void bm_pair(benchmark::State& state, double tau0, double beta, bool sun, double
   const Vec3 i = spherical_direction(theta_i_deg * kDeg, 0.0);
   vndf();  // the sigma^-1 table, built outside the timed loop
   Moments ndf, vn;
-  std::uint64_t seed = 1;
+  // Every call (repetition) draws new samples: seeds (call << 32) + batch.
+  static std::uint64_t calls = 0;
+  std::uint64_t seed = ++calls << 32;
   bool vndf_first = false;
   for (auto _ : state) {
     for (int k = 0; k < 2; ++k) {
