@@ -73,7 +73,7 @@ double VndfSampler::inverse_sigma(double ci, double si, double xi_area) const {
 
 SinCos VndfSampler::sample_theta(double tau0, double ci, double si, double xi) const {
   // 1 - tau(i', 0) = exp(-rho' sigma(i', 0)) = (1 - tau0)^(sigma(i', 0) / pi), rho' = -ln(1 - tau0) / pi.
-  // pow and log rather than expm1 and log1p (a third of their latency here):
+  // exp and log rather than expm1 and log1p (two thirds of their latency here):
   // the arguments' rounding moves Xi by at most ~4e-16 / tau0 in absolute
   // terms, far below any bin.
   const double log_gap = std::log(1 - tau0);
@@ -124,30 +124,30 @@ double PhiConditional::tent_inverse(double u) const {  // Eq. 31
   return std::copysign(phi_q * tent_fraction(std::fabs(u - 0.5)), u - 0.5);
 }
 
-TriangleCut PhiConditional::cut(double u_s) const {
-  const double x = tent_inverse(u_s);
-  return cut_at(u_s, x, std::fabs(x) / phi_q, std::sin(x), std::cos(x));
+PhiConditional::CutTerms PhiConditional::cut_terms(double u_s, double x, double y, double sin_x, double cos_x) const {
+  // Listing 3, lines 19–24, every term times mass phi_q: f = a cos x + b, f' = -a sin x,
+  // the tent t0 - t1 y, and 2 (u_s - F(x)) = (2 u_s - 1) mass - 2 (a sin x + b x).
+  const double d = (2 * u_s - 1) * mass - 2 * (a * sin_x + b * x);
+  return {(a * cos_x + b) * phi_q, -a * sin_x * phi_q, t0() - t1() * y, d * phi_q};
 }
 
-TriangleCut PhiConditional::cut_at(double u_s, double x, double y, double sin_x, double cos_x) const {
-  // Listing 3, lines 19–24, every term times mass phi_q: f = a cos x + b, the
-  // CDF's excess (2 u_s - 1) mass - 2 (a sin x + b x), f' = -a sin x, tent t0 - t1 y.
-  const double g = a * cos_x + b, d = (2 * u_s - 1) * mass - 2 * (a * sin_x + b * x);
-  return triangle_cut_scaled(x, g * phi_q, -a * sin_x * phi_q, t0() - t1() * y, d * phi_q);
+TriangleCut PhiConditional::cut(double u_s) const {
+  const double x = tent_inverse(u_s);
+  const CutTerms c = cut_terms(u_s, x, std::fabs(x) / phi_q, std::sin(x), std::cos(x));
+  return triangle_cut_scaled(x, c.f, c.df, c.q, c.d);
 }
 
 PhiSample PhiConditional::sample(double u_s, double u_t) const {
   const double y = tent_fraction(std::fabs(u_s - 0.5)), x = std::copysign(phi_q * y, u_s - 0.5);
   const SinCos sx = sincos_within_pi(x);  // the series (small_angle.h)
-  const double sin_x = sx.sin, cos_x = sx.cos;
-  // The cut of cut_at, its point at u_t in one step (triangle_cut_point).
-  const double g = a * cos_x + b, d_cdf = (2 * u_s - 1) * mass - 2 * (a * sin_x + b * x);
-  const double end = triangle_cut_point(x, g * phi_q, -a * sin_x * phi_q, t0() - t1() * y, d_cdf * phi_q, u_t);
+  // The point of the cut at u_t in one step (triangle_cut_point).
+  const CutTerms c = cut_terms(u_s, x, y, sx.sin, sx.cos);
+  const double end = triangle_cut_point(x, c.f, c.df, c.q, c.d, u_t);
   // phi = x + d, d the step along the cut (|d| < 1.3 everywhere, see the
   // tests): its sine and cosine by angle addition, without a second sincos.
   const double d = std::clamp(end, -phi_q, phi_q) - x;
   const SinCos r = sincos_small(d);
-  return {x + d, cos_x * r.cos - sin_x * r.sin, sin_x * r.cos + cos_x * r.sin};
+  return {x + d, sx.cos * r.cos - sx.sin * r.sin, sx.sin * r.cos + sx.cos * r.sin};
 }
 
 double VndfSampler::sample_phi(Vec3 iu, double ct, double u_s, double u_t) {

@@ -88,7 +88,12 @@ struct PhiConditional {
   double t0() const { return shadow ? mass : kPi * (a + b); }
   double t1() const { return shadow ? mass : 2 * kPi * a; }
   double tent_fraction(double v) const;  // y of the tent sample with |u_s - 1/2| = v
-  TriangleCut cut_at(double u_s, double x, double y, double sin_x, double cos_x) const;
+  // f, f', the tent and 2 (u_s - F) at the tent sample x = +-y phi_q, all times
+  // mass phi_q (the arguments of triangle_cut_scaled and triangle_cut_point).
+  struct CutTerms {
+    double f, df, q, d;
+  };
+  CutTerms cut_terms(double u_s, double x, double y, double sin_x, double cos_x) const;
 };
 
 }  // namespace mcref::micrograin
