@@ -8,7 +8,7 @@
 // is a density per radian of phi (count / (samples du phi_q)).
 #include <cmath>
 
-#include "models/micrograin/vndf_sampler.h"
+#include "models/micrograin/phi_conditional.h"
 #include "sim/micrograin/estimator.h"
 
 namespace mcref {
