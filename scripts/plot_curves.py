@@ -15,7 +15,7 @@ from validation_data import channel_name, distinct_channels, greek, identically_
 
 # The axis along x for each quantity; the other axes become series.
 X_AXIS = {"p1": "r", "ndf": "theta_m", "tau_plus": "theta_i", "tau_height": "h",
-          "g1": "theta_i", "g1_conditional": "theta_m", "vndf": "theta_m",
+          "g1": "theta_i", "g1_conditional": "theta_m", "vndf": "theta_m", "phi_conditional": "phi_over_phi_q",
           "pore_visibility": "theta_o", "pore_visibility_independent": "theta_o",
           "phase": "mu", "brdf_modes": "theta_o", "spherical_albedo": "channel",
           "albedo": "theta_i", "transmittance": "theta_i", "energy_balance": "theta_i",
@@ -122,8 +122,26 @@ def slice_view(table, ch):
     return View(x, xlabel, series, cats)
 
 
+def phi_conditional_views(table):
+    """phi_conditional (the vNDF paper's Fig. 5): one panel per (θi′, θm′), over φ′ − φi′ in degrees,
+    from −φq to φq (the table's axis is φ/φq)."""
+    di, dm, du = (table.axis(n) for n in ("theta_i", "theta_m", "phi_over_phi_q"))
+    out = []
+    for i, ti in enumerate(table.axes[di].values):
+        for j, tm in enumerate(table.axes[dm].values):
+            p = np.tan(ti) * np.tan(tm)
+            phi_q = np.pi if p <= 1 else np.arccos(-1 / p)  # the visibility bound (Listing 3, line 8)
+            fixed = {di: i, dm: j}
+            series = [Series("", lambda a, fixed=fixed: a[_index(table, fixed)])]
+            label = f"θi′ = {np.degrees(ti):.0f}°, θm′ = {np.degrees(tm):.0f}°"
+            out.append((label, View(np.degrees(table.axes[du].values * phi_q), "φ′ − φi′ (deg)", series)))
+    return out
+
+
 def table_views(table):
     """(channel label, View) per distinct channel of a table."""
+    if table.quantity == "phi_conditional":
+        return phi_conditional_views(table)
     xname = X_AXIS.get(table.quantity)
     lobes = is_lobe_table(table)
     if not lobes and xname == "channel":

@@ -134,7 +134,7 @@ def value_label(table, d, i):
 
 
 GREEK = {"theta_i": "θi", "theta_o": "θo", "theta_m": "θm", "phi": "φ", "phi_i": "φi", "phi_m": "φm",
-         "phi_m_rel": "φm − φi", "mu": "μ", "tau_plus": "τ⁺", "tau_height": "τ(i, h)", "g1": "G1",
+         "phi_m_rel": "φm − φi", "phi_over_phi_q": "φ/φq", "phi_conditional": "p(φ′ | θ′)", "mu": "μ", "tau_plus": "τ⁺", "tau_height": "τ(i, h)", "g1": "G1",
          "g1_conditional": "G1(i | m)", "ndf": "D(m)", "vndf": "Dv(i, m)", "p1": "p¹(r)",
          "brdf": "f_r", "btdf": "f_t", "brdf_modes": "f⁽ᵏ⁾", "albedo": "albedo",
          "transmittance": "transmittance", "energy_balance": "scattered energy",

@@ -7,7 +7,7 @@ namespace mcref {
 namespace {
 
 const std::vector<const ModelFamily*>& families() {
-  static const std::vector<const ModelFamily*> f{&micrograin_geometry_models(), &micrograin_brdf_models(),
+  static const std::vector<const ModelFamily*> f{&micrograin_geometry_models(), &micrograin_brdf_models(), &micrograin_phi_conditional_models(),
                                                  &slab_models(), &sphere_models()};
   return f;
 }

@@ -65,6 +65,7 @@ std::size_t axis_index(const Table& t, const std::string& name);
 // The families (each defined in its own file).
 const ModelFamily& micrograin_geometry_models();
 const ModelFamily& micrograin_brdf_models();
+const ModelFamily& micrograin_phi_conditional_models();
 const ModelFamily& slab_models();
 const ModelFamily& sphere_models();
 

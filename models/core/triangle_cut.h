@@ -35,16 +35,36 @@ struct TriangleCut {
   }
 };
 
-// u_s: the uniform that gave x_a = Q^-1(u_s); f, F, df: the target pdf, its
-// CDF and its derivative at x_a; q: the approximate pdf at x_a.
-inline TriangleCut triangle_cut(double u_s, double x_a, double f, double F, double df, double q) {
+// x_a: the approximate sample Q^-1(u_s); f, df, q: the target pdf, its
+// derivative and the approximate pdf at x_a; d = 2 (u_s - F(x_a)), F the
+// target CDF. The cut does not change when f, df, q and d are scaled
+// together, so all four may carry any common positive factor (e.g. an
+// unnormalised target).
+inline TriangleCut triangle_cut_scaled(double x_a, double f, double df, double q, double d) {
   TriangleCut c;
   c.x_a = c.x_b = x_a;
   if (!(f > 0) || !(q > 0)) return c;  // an end point of the domain (u_s = 0 or 1)
-  const double inv_fq = 1 / (f * q), d = 2 * (u_s - F);  // one division for both
+  const double inv_fq = 1 / (f * q);    // one division for both
   c.x_b = x_a + d * q * inv_fq;
   c.w_a = (f * f + d * df) * inv_fq;
   return c;
+}
+
+// triangle_cut_scaled(x_a, f, df, q, d).point(u_t) with one division instead
+// of three: with P = f q and W = f^2 + d df (so w_a = W / P and
+// x_b - x_a = d q / P), the root t = 2 u_t / (w_a + sqrt(w_a^2 + 4 (1 - w_a) u_t))
+// makes the point x_a + 2 u_t d q / (W + sqrt(W^2 + 4 P (P - W) u_t)).
+inline double triangle_cut_point(double x_a, double f, double df, double q, double d, double u_t) {
+  if (!(f > 0) || !(q > 0)) return x_a;  // an end point of the domain
+  const double P = f * q, W = f * f + d * df, r = W * W + 4 * P * (P - W) * u_t;
+  const double den = W + std::sqrt(r > 0 ? r : 0.0);
+  return den > 0 ? x_a + 2 * u_t * d * q / den : x_a;
+}
+
+// u_s: the uniform that gave x_a = Q^-1(u_s), Q the CDF of q; f, F, df: the
+// target pdf, its CDF and its derivative at x_a; q: the approximate pdf at x_a.
+inline TriangleCut triangle_cut(double u_s, double x_a, double f, double F, double df, double q) {
+  return triangle_cut_scaled(x_a, f, df, q, 2 * (u_s - F));
 }
 
 }  // namespace mcref

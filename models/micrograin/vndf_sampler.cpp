@@ -70,59 +70,24 @@ double VndfSampler::inverse_sigma(double ci, double si, double xi_area) const {
   return (top + fy * (bottom - top)) * (si / kTableScale);
 }
 
-double VndfSampler::sample_cos_theta(double tau0, double ci, double si, double xi) const {
-  const double rho = -std::log1p(-tau0) / kPi;  // unit-space density
-  const double tau_i0 = -std::expm1(-rho * sigma_at_zero(ci));
-  const double area = -std::log1p(-xi * tau_i0) / rho;  // Eq. 23: sigma(i', cos theta) = Xi
-  if (area <= shadow_floor(ci)) return std::sqrt(std::max(0.0, 1 - area / kPi));  // Eq. 25
-  return inverse_sigma(ci, si, area);
-}
-
-PhiConditional::PhiConditional(Vec3 iu, double ct)
-    : PhiConditional(iu.z, std::sqrt(std::max(0.0, 1 - iu.z * iu.z)), ct, std::sqrt(std::max(0.0, 1 - ct * ct))) {}
-
-PhiConditional::PhiConditional(double ci, double si, double ct, double st) {
-  a = si * st;
-  b = ci * ct;
-  phi_q = kPi;
-  double sin_q = 0, cos_q = -1;
-  if (si > ct) {  // part of the normals at this theta' faces away from i' (Listing 3, line 8)
-    cos_q = std::clamp(-b / a, -1.0, 1.0);
-    sin_q = std::sqrt(1 - cos_q * cos_q);
-    phi_q = std::acos(cos_q);
+SinCos VndfSampler::sample_theta(double tau0, double ci, double si, double xi) const {
+  // 1 - tau(i', 0) = exp(-rho' sigma(i', 0)) = (1 - tau0)^(sigma(i', 0) / pi), rho' = -ln(1 - tau0) / pi.
+  // exp and log rather than expm1 and log1p (two thirds of their latency here):
+  // the arguments' rounding moves Xi by at most ~4e-16 / tau0 in absolute
+  // terms, far below any bin.
+  const double log_gap = std::log(1 - tau0);
+  const double gap_i0 = std::exp(log_gap * sigma_at_zero(ci) / kPi);
+  const double xi_area = std::log(1 - xi * (1 - gap_i0)) * (kPi / log_gap);  // Eq. 23: sigma(i', cos theta) = Xi
+  if (xi_area <= shadow_floor(ci)) {  // Eq. 25: cos^2 theta = 1 - Xi / pi, sin^2 theta = Xi / pi
+    const double s2 = std::max(0.0, xi_area / kPi);
+    return {std::sqrt(s2), std::sqrt(std::max(0.0, 1 - s2))};
   }
-  norm = 1 / (2 * (a * sin_q + b * phi_q));
-  h0 = std::max(0.0, norm * (a * cos_q + b));
-  const double inv_q = 1 / phi_q;
-  h1 = inv_q - h0;
-  slope = (h0 - h1) * inv_q;
+  const double ct = inverse_sigma(ci, si, xi_area);
+  return {std::sqrt(std::max(0.0, 1 - ct * ct)), ct};
 }
 
-double PhiConditional::tent_inverse(double u) const {
-  // CDF for phi >= 0: 1/2 + h1 phi + slope phi^2 / 2; symmetric below.
-  const double v = std::fabs(u - 0.5);
-  const double r = h1 * h1 + 2 * slope * v;
-  const double p = std::min(phi_q, 2 * v / (h1 + std::sqrt(std::max(0.0, r))));  // stable root
-  return u < 0.5 ? -p : p;
-}
-
-TriangleCut PhiConditional::cut(double u_s) const {
-  const double x = tent_inverse(u_s);
-  return cut_at(u_s, x, std::sin(x), std::cos(x));
-}
-
-TriangleCut PhiConditional::cut_at(double u_s, double x, double sin_x, double cos_x) const {
-  const double f = norm * (a * cos_x + b), F = 0.5 + norm * (a * sin_x + b * x), df = -norm * a * sin_x;
-  return triangle_cut(u_s, x, f, F, df, tent_pdf(x));
-}
-
-PhiSample PhiConditional::sample(double u_s, double u_t) const {
-  const double x = tent_inverse(u_s), sin_x = std::sin(x), cos_x = std::cos(x);
-  // phi = x + d, d the step along the cut (|d| < 1.3 everywhere, see the
-  // tests): its sine and cosine by angle addition, without a second sincos.
-  const double d = std::clamp(cut_at(u_s, x, sin_x, cos_x).point(u_t), -phi_q, phi_q) - x;
-  const SinCos r = sincos_small(d);
-  return {x + d, cos_x * r.cos - sin_x * r.sin, sin_x * r.cos + cos_x * r.sin};
+double VndfSampler::sample_cos_theta(double tau0, double ci, double si, double xi) const {
+  return sample_theta(tau0, ci, si, xi).cos;
 }
 
 double VndfSampler::sample_phi(Vec3 iu, double ct, double u_s, double u_t) {
@@ -131,11 +96,11 @@ double VndfSampler::sample_phi(Vec3 iu, double ct, double u_s, double u_t) {
 
 Vec3 VndfSampler::sample_unit(double tau0, Vec3 iu, double u1, double u2, double u3) const {
   const double ci = iu.z, si = std::sqrt(std::max(0.0, 1 - ci * ci));
-  const double ct = sample_cos_theta(tau0, ci, si, u1), st = std::sqrt(std::max(0.0, 1 - ct * ct));
-  const PhiSample p = PhiConditional(ci, si, ct, st).sample(u2, u3);
-  const Vec3 m{p.cos_phi * st, p.sin_phi * st, ct};
+  const SinCos t = sample_theta(tau0, ci, si, u1);
+  const PhiSample p = PhiConditional(ci, si, t.cos, t.sin).sample(u2, u3);
+  const Vec3 m{p.cos_phi * t.sin, p.sin_phi * t.sin, t.cos};
   if (!(si > 0)) return m;
-  const double rx = iu.x / si, ry = iu.y / si;  // Listing 4: rotate to the azimuth of i'
+  const double inv_si = 1 / si, rx = iu.x * inv_si, ry = iu.y * inv_si;  // Listing 4: rotate to the azimuth of i'
   return {m.x * rx - m.y * ry, m.x * ry + m.y * rx, m.z};
 }
 

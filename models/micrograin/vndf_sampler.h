@@ -24,9 +24,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "models/core/triangle_cut.h"
+#include "models/core/small_angle.h"
 #include "models/core/vec.h"
 #include "models/micrograin/grain_field.h"
+#include "models/micrograin/phi_conditional.h"
 
 namespace mcref::micrograin {
 
@@ -35,7 +36,10 @@ class VndfSampler {
   static constexpr int kResolution = 1024;
   VndfSampler();  // builds the sigma^-1 table (~0.3 s)
 
-  // cos theta' of a visible normal (Listing 1), i_unit the unit-space direction.
+  // sin and cos of theta' of a visible normal (Listing 1; sin theta' from Xi
+  // directly where Eq. 25 applies), for a unit-space i' at polar angle theta_i'.
+  SinCos sample_theta(double tau0, double cos_theta_i, double sin_theta_i, double xi) const;
+  // cos theta' alone.
   double sample_cos_theta(double tau0, double cos_theta_i, double sin_theta_i, double xi) const;
   // phi' relative to the azimuth of i' (Sec. 4.2, Listing 3), given cos theta'.
   static double sample_phi(Vec3 i_unit, double cos_theta, double u_s, double u_t);
@@ -50,32 +54,6 @@ class VndfSampler {
 
  private:
   std::vector<std::uint16_t> table_;  // [row: cos theta_i][column: normalised Xi] -> h / sin theta_i, 16-bit
-};
-
-struct PhiSample {
-  double phi, cos_phi, sin_phi;
-};
-
-// The conditional density of phi' given theta' over [-phi_q, phi_q], for
-// i' at azimuth 0 (Eq. 22, 26, 27 with phi_q), and its tent (Eq. 28–31).
-struct PhiConditional {
-  PhiConditional(Vec3 i_unit, double cos_theta);
-  PhiConditional(double cos_theta_i, double sin_theta_i, double cos_theta, double sin_theta);
-  double phi_q;  // the bound: pi, or the shadow terminator (Listing 3, line 8)
-  double a, b;   // sin theta_i' sin theta', cos theta_i' cos theta'
-  double norm;   // 1 / (2 (a sin phi_q + b phi_q))
-  double h0;     // pdf(phi_q), the tent's height at its ends
-  double h1;     // 1 / phi_q - h0, its height at 0 (unit mass)
-  double slope;  // (h0 - h1) / phi_q
-  double pdf(double phi) const { return norm * (a * std::cos(phi) + b); }                 // Eq. 26
-  double cdf(double phi) const { return 0.5 + norm * (a * std::sin(phi) + b * phi); }     // Eq. 22
-  double tent_pdf(double phi) const { return h1 + slope * std::fabs(phi); }              // Eq. 28
-  double tent_inverse(double u) const;                                                   // Eq. 31
-  // The triangle cut of the tent sample of u_s (Listing 3, lines 16–24).
-  TriangleCut cut(double u_s) const;
-  TriangleCut cut_at(double u_s, double x, double sin_x, double cos_x) const;  // x = tent_inverse(u_s)
-  // phi' (Listing 3) with its cosine and sine.
-  PhiSample sample(double u_s, double u_t) const;
 };
 
 }  // namespace mcref::micrograin

@@ -34,7 +34,7 @@ void read_geometry(TomlReader& root, Experiment& e) {
 }  // namespace
 
 const std::vector<std::string>& known_quantities(const std::string& kind) {
-  static const std::vector<std::string> micrograin{"p1", "ndf", "tau_plus", "tau_height", "g1", "pore_visibility", "vndf", "brdf"};
+  static const std::vector<std::string> micrograin{"p1", "ndf", "tau_plus", "tau_height", "g1", "pore_visibility", "vndf", "phi_conditional", "brdf"};
   static const std::vector<std::string> slab{"brdf"};
   static const std::vector<std::string> spheres{"brdf", "phase"};
   return kind == "micrograin" ? micrograin : kind == "slab" ? slab : spheres;
@@ -81,6 +81,10 @@ Measure read_measure(const toml::table& t, const Experiment& e, std::size_t inde
     if (out.phi_i.size() != 1) m.fail("phi_i_deg", "takes one azimuth for pore_visibility");
     out.theta_o = to_radians(m.numbers("theta_o_deg", theta));
     out.phi = to_radians(m.numbers("phi_deg", {-360, 360, false, false}, std::vector<double>{0.0, 90.0, 180.0}));
+  } else if (q == "phi_conditional") {
+    out.theta_i = to_radians(m.numbers("theta_i_deg", theta));  // unit-space angles
+    out.theta_m = to_radians(m.numbers("theta_m_deg", theta));
+    out.phi_bins = static_cast<int>(m.integer("phi_bins", 1, 10000, 64));
   } else {
     out.theta_i = to_radians(m.numbers("theta_i_deg", theta));
     out.phi_i = to_radians(m.numbers("phi_i_deg", azimuth, std::vector<double>{0.0}));

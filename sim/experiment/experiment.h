@@ -20,10 +20,11 @@ struct RunSettings {
 
 // One [[measure]] table. Angles are stored in radians.
 struct Measure {
-  std::string quantity;  // p1, ndf, tau_plus, tau_height, g1, pore_visibility, vndf
+  std::string quantity;  // p1, ndf, tau_plus, tau_height, g1, pore_visibility, vndf, phi_conditional
   std::string name;      // table name in the output file (defaults to quantity)
   std::vector<double> theta_i, phi_i;  // incident directions
   std::vector<double> theta_o, phi;    // pore_visibility: outgoing directions, relative azimuths
+  std::vector<double> theta_m;         // phi_conditional: unit-space polar angles of the normals
   int theta_o_bins = 0, phi_bins = 0;  // brdf: outgoing bins (equal solid angle)
   int max_order = 0;                   // brdf: 0 = unlimited (unbiased Russian roulette)
   int mu_bins = 0;                     // phase: bins of the deflection cosine

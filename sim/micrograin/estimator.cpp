@@ -30,6 +30,7 @@ Estimator tau_height_estimator();
 Estimator g1_estimator();
 Estimator pore_visibility_estimator();
 Estimator vndf_estimator();
+Estimator phi_conditional_estimator();
 Estimator micrograin_brdf_estimator();
 
 const Estimator& estimator_for(const std::string& quantity) {
@@ -41,6 +42,7 @@ const Estimator& estimator_for(const std::string& quantity) {
       {"g1", g1_estimator()},
       {"pore_visibility", pore_visibility_estimator()},
       {"vndf", vndf_estimator()},
+      {"phi_conditional", phi_conditional_estimator()},
       {"brdf", micrograin_brdf_estimator()},
   };
   const auto it = registry.find(quantity);

@@ -1,11 +1,9 @@
 // Benchmarks of micrograin transport (issue #3), printed as a table.
-// Usage: bench_micrograin_transport [all|samplers|walk] [threads (walk; default 2)]
-// 1. ns/sample of the NDF sampler (unit space, LRPB23 Eq. 20) and of the vNDF
-//    sampler (vNDF paper Listings 1–4, models/micrograin/vndf_sampler.h) at
-//    theta_i = 20, 40, 60, 80 deg, 10^7 samples each, one thread, and the
-//    vNDF/NDF ratio (paper, Table 2: 2.97–3.79 with triangle-cut phi).
-// 2. Paths/s and rays/s of the BRDF walk (sim/micrograin/micrograin_walk) on
-//    2 threads (run_chunks, as the estimator; optional 2nd argument: threads),
+// Usage: bench_micrograin_transport [threads (default 2)]
+// (The normal samplers' costs, once item 1 here, are measured by
+// bench_micrograin_samplers.)
+// Paths/s and rays/s of the BRDF walk (sim/micrograin/micrograin_walk) on
+//    2 threads (run_chunks, as the estimator; optional argument: threads),
 //    against the walk's own rtcIntersect1 calls replayed bare (same rays, same
 //    self-hit filter) and first-hit rays from the top on the same scene. Field:
 //    tau0 = 0.6, beta = 1, tile 200; Lambertian grains 0.8, base 0.5; theta_i = 40.
@@ -23,12 +21,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
-#include <string>
 #include <vector>
 
 #include "models/core/rng.h"
-#include "models/micrograin/ndf_sampling.h"
-#include "models/micrograin/vndf_sampler.h"
 #include "sim/micrograin/estimator.h"
 #include "sim/micrograin/micrograin_walk.h"
 #include "sim/micrograin/ray_log.h"
@@ -39,47 +34,11 @@ namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
-template <class F>
-double ns_per_sample(F&& sample, std::uint64_t n) {
-  Rng rng(7);
-  double sink = 0;
-  const double t0 = now();
-  for (std::uint64_t k = 0; k < n; ++k) {
-    const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
-    const Vec3 m = sample(u1, u2, u3);
-    sink += m.z;
-  }
-  const double t = now() - t0;
-  if (sink == 12345.678) std::printf("!");
-  return 1e9 * t / static_cast<double>(n);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string part = argc > 1 ? argv[1] : "all";  // all | samplers | walk
-  const std::uint64_t n = 10000000;
   const double tau0 = 0.6;
-  if (part != "walk") {
-  const double t_build = now();
-  const micrograin::VndfSampler vndf;
-  std::printf("vNDF sigma^-1 table (1024 x 1024) built in %.2f s\n\n", now() - t_build);
-  std::printf("theta_i  NDF ns  vNDF ns  vNDF/NDF   (10^7 samples, 1 thread; tau0 = %.1f, unit space)\n", tau0);
-  for (double ti : {20.0, 40.0, 60.0, 80.0}) {
-    // tau0 and i are read through volatiles at every sample, so that the
-    // compiler cannot hoist their part of the work out of the loop: the
-    // cost of a call with new arguments, as in a path tracer.
-    const Vec3 iu = spherical_direction(ti * kPi / 180, 0.3);
-    volatile double v_tau0 = tau0, v_ix = iu.x, v_iy = iu.y, v_iz = iu.z;
-    const double a = ns_per_sample([&](double u1, double u2, double) { return micrograin::sample_unit_ndf(v_tau0, u1, u2); }, n);
-    const double b = ns_per_sample(
-        [&](double u1, double u2, double u3) { return vndf.sample_unit(v_tau0, {v_ix, v_iy, v_iz}, u1, u2, u3); }, n);
-    std::printf("%5.0f    %6.1f  %7.1f  %6.2f\n", ti, a, b, b / a);
-  }
-  }
-  if (part == "samplers") return 0;
-
-  const int threads = argc > 2 ? std::atoi(argv[2]) : 2;
+  const int threads = argc > 1 ? std::atoi(argv[1]) : 2;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   MicrograinGeometry g;
   g.tau0 = tau0;

@@ -113,7 +113,7 @@ TEST(MicrograinVndfSampler, TentIsAUnitMassDensity) {
   // The tent (Eq. 28, slope sign corrected) and its inverse CDF (Eq. 31):
   // ends at +-phi_q with height h0, unit mass, symmetric inverse.
   const PhiConditional p(Vec3{std::sin(1.2), 0, std::cos(1.2)}, std::cos(1.0));
-  EXPECT_NEAR(p.tent_pdf(p.phi_q), p.h0, 1e-14);
+  EXPECT_NEAR(p.tent_pdf(p.phi_q), p.h0(), 1e-14);
   EXPECT_NEAR(p.tent_inverse(0.5), 0.0, 1e-14);
   EXPECT_NEAR(p.tent_inverse(1.0), p.phi_q, 1e-12);
   EXPECT_NEAR(p.tent_inverse(0.2), -p.tent_inverse(0.8), 1e-12);

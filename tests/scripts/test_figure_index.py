@@ -14,4 +14,5 @@ def test_readme_figure_index_is_current():
 def test_index_lists_every_suite_figure_and_the_missing_ones():
     text = subprocess.run(["/usr/bin/python3", SCRIPT], capture_output=True, text=True, check=True).stdout
     assert "| LRPB23 Fig. 9 |" in text and "`figure_lrpb23_fig_9.png` (overlay)" in text
-    assert "- **vNDF paper Fig. 5.**" in text
+    assert "| vNDF paper Fig. 5 | `phi_conditional_triangle_cut` |" in text
+    assert "- **vNDF paper Fig. 6.**" in text

@@ -100,16 +100,21 @@ TEST_F(SimFingerprint, EditsToWhatSimComputesChangeIt) {
 }
 
 // On mcref's own tree: the manifest holds sim/ and the models sim/ includes
-// (the RNG, the SGGX phase functions), and nothing of validate/ or of the
-// micrograin models that only validate uses.
+// (the RNG, the SGGX phase functions, the phi sampler that the phi_conditional
+// table histograms), and nothing of validate/ or of the other micrograin
+// models, which only validate uses.
 TEST_F(SimFingerprint, RealTreeCoversSimAndTheModelsItIncludes) {
   fs::create_directories(dir_);
   EXPECT_EQ(run(MCREF_SOURCE_DIR, "x").size(), 16u);
   const std::string m = manifest();
-  for (const char* f : {"\nsim/slab/walk.cpp ", "\nmodels/core/rng.h ", "\nmodels/sggx/sggx_distribution.cpp "})
+  for (const char* f : {"\nsim/slab/walk.cpp ", "\nmodels/core/rng.h ", "\nmodels/sggx/sggx_distribution.cpp ",
+                        "\nmodels/micrograin/phi_conditional.cpp "})
     EXPECT_NE(m.find(f), std::string::npos) << f << " missing from\n" << m;
-  for (const char* f : {"\nvalidate/", "\nmodels/micrograin/", "\nscripts/", "\ntests/"})
+  for (const char* f : {"\nvalidate/", "\nscripts/", "\ntests/"})
     EXPECT_EQ(m.find(f), std::string::npos) << f << " in\n" << m;
+  for (std::size_t at = m.find("\nmodels/micrograin/"); at != std::string::npos; at = m.find("\nmodels/micrograin/", at + 1))
+    EXPECT_EQ(m.compare(at, 34, "\nmodels/micrograin/phi_conditional"), 0) << m.substr(at + 1, m.find(' ', at) - at - 1)
+                                                                           << " in\n" << m;
 }
 
 }  // namespace

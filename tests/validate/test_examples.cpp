@@ -57,6 +57,6 @@ TEST(Examples, QuickExperimentRuns) {
   SimulateOptions o;
   o.quiet = true;
   const std::vector<Table> tables = simulate(ex, o);
-  EXPECT_EQ(tables.size(), 9u);
+  EXPECT_EQ(tables.size(), 10u);
   for (const Table& t : tables) EXPECT_EQ(t.batches, ex.run.batches) << t.name;
 }

@@ -6,6 +6,7 @@
 #include <set>
 #include <vector>
 
+#include "models/core/arc_sine.h"
 #include "models/core/frame.h"
 #include "models/core/quadrature.h"
 #include "models/core/rng.h"
@@ -111,6 +112,47 @@ TEST(SmallAngle, TurnMatchesTheLibrary) {
   EXPECT_EQ(sincos_turn(0.75).sin, -1.0);
   const SinCos back = sincos_turn(-0.3);  // outside [0, 2^50): the library
   EXPECT_EQ(back.sin, std::sin(2 * kPi * -0.3));
+}
+
+TEST(SmallAngle, WithinPiMatchesTheLibrary) {
+  double worst = 0;
+  for (int k = -40000; k <= 40000; ++k) {
+    const double x = k * (kPi / 40000);  // [-pi, pi]
+    const SinCos r = sincos_within_pi(x);
+    worst = std::max({worst, std::fabs(r.sin - std::sin(x)), std::fabs(r.cos - std::cos(x))});
+  }
+  EXPECT_LT(worst, 1e-15);
+  const SinCos far = sincos_within_pi(4.0);  // outside [-pi, pi]: the library
+  EXPECT_EQ(far.sin, std::sin(4.0));
+}
+
+TEST(ArcSine, MatchesTheLibrary) {
+  double worst = 0;
+  for (int k = -100000; k <= 100000; ++k) {
+    const double x = k * 1e-5;  // [-1, 1], across the switch at |x| = 1/2
+    worst = std::max(worst, std::fabs(asin_series(x) - std::asin(x)));
+  }
+  EXPECT_LT(worst, 1e-15);
+  EXPECT_EQ(asin_series(0.0), 0.0);
+  EXPECT_NEAR(asin_series(1.0), kPi / 2, 1e-16);
+  EXPECT_NEAR(asin_series(-1.0), -kPi / 2, 1e-16);
+}
+
+TEST(TriangleCut, FusedPointEqualsTheCutsPoint) {
+  // triangle_cut_point: the point of triangle_cut_scaled(...).point(u_t) in one
+  // step, for random cuts (f, q > 0, w_a anywhere in [0, 2]) and any common scale.
+  Rng rng(9);
+  double worst = 0;
+  for (int k = 0; k < 100000; ++k) {
+    const double x_a = rng.uniform() - 0.5, f = 0.05 + rng.uniform(), q = 0.05 + rng.uniform();
+    const double d = 2 * (rng.uniform() - 0.5), w_a = 2 * rng.uniform(), df = (w_a * f * q - f * f) / d;
+    const double scale = std::exp(10 * (rng.uniform() - 0.5)), u_t = rng.uniform();
+    const TriangleCut c = triangle_cut_scaled(x_a, f, df, q, d);
+    const double p = triangle_cut_point(x_a, scale * f, scale * df, scale * q, scale * d, u_t);
+    worst = std::max(worst, std::fabs(p - c.point(u_t)) / (1 + std::fabs(c.x_b - x_a)));
+  }
+  EXPECT_LT(worst, 1e-13);
+  EXPECT_EQ(triangle_cut_point(0.3, 0.0, 1.0, 1.0, 0.5, 0.7), 0.3);  // an end of the domain
 }
 
 TEST(TriangleCut, MapsUniformSamplesOntoTheTarget) {
