@@ -32,10 +32,10 @@ inline constexpr std::array<double, 9> kSin = series<9>(1);   // to d^17
 inline constexpr std::array<double, 10> kCos = series<10>(0);  // to d^18
 }  // namespace detail
 
-inline SinCos sincos_small(double d) {
-  if (!(std::fabs(d) <= 1.5)) return {std::sin(d), std::cos(d)};
+namespace detail {
+// The series of sincos_small, without its range check.
+inline SinCos sincos_series(double d) {
   // Estrin's scheme in z (shorter dependency chains than Horner's).
-  using detail::kCos, detail::kSin;
   const double z = d * d, z2 = z * z, z4 = z2 * z2, z8 = z4 * z4;
   const double s = (kSin[0] + kSin[1] * z) + z2 * (kSin[2] + kSin[3] * z) +
                    z4 * ((kSin[4] + kSin[5] * z) + z2 * (kSin[6] + kSin[7] * z)) + z8 * kSin[8];
@@ -43,16 +43,35 @@ inline SinCos sincos_small(double d) {
                    z4 * ((kCos[4] + kCos[5] * z) + z2 * (kCos[6] + kCos[7] * z)) + z8 * (kCos[8] + kCos[9] * z);
   return {d * s, c};
 }
+// sin and cos of d + q pi/2 from those of d, by selects (no table, no branch):
+// cos(d + q pi/2) = {c, -s, -c, s}[q mod 4], sin(d + q pi/2) = {s, c, -s, -c}[q mod 4].
+inline SinCos rotate_quarter_turns(SinCos r, int q) {
+  const bool odd = q & 1;
+  const double s = odd ? r.cos : r.sin, c = odd ? r.sin : r.cos;
+  return {q & 2 ? -s : s, (q + 1) & 2 ? -c : c};
+}
+}  // namespace detail
+
+inline SinCos sincos_small(double d) {
+  if (!(std::fabs(d) <= 1.5)) return {std::sin(d), std::cos(d)};
+  return detail::sincos_series(d);
+}
 
 // sin(2 pi u) and cos(2 pi u), within ~1e-15; by the series for
 // 0 <= u < 2^50 (u - q/4 is then exact and |d| <= pi/4), else the library.
 inline SinCos sincos_turn(double u) {
   if (!(u >= 0 && u < 0x1p50)) return {std::sin(2 * kPi * u), std::cos(2 * kPi * u)};
   const std::int64_t q = static_cast<std::int64_t>(4 * u + 0.5);  // nearest quarter turn for u >= 0
-  const SinCos r = sincos_small(2 * kPi * (u - 0.25 * static_cast<double>(q)));
-  // Rotate by q quarter turns: cos(d + q pi/2) = v[-q mod 4], sin(d + q pi/2) = v[(1 - q) mod 4].
-  const double v[4] = {r.cos, r.sin, -r.cos, -r.sin};
-  return {v[(1 - q) & 3], v[-q & 3]};
+  const SinCos r = detail::sincos_series(2 * kPi * (u - 0.25 * static_cast<double>(q)));
+  return detail::rotate_quarter_turns(r, static_cast<int>(q & 3));
+}
+
+// The same for 0 <= u <= 1 (a uniform random number), bit for bit, without
+// the range check: no branch and no library call, so loops over many u
+// vectorise.
+inline SinCos sincos_turn_unit(double u) {
+  const int q = static_cast<int>(4 * u + 0.5);
+  return detail::rotate_quarter_turns(detail::sincos_series(2 * kPi * (u - 0.25 * q)), q);
 }
 
 }  // namespace mcref
