@@ -135,6 +135,13 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// name = median of v, name_min and name_max.
+void report_spread(benchmark::State& state, const std::string& name, const std::vector<double>& v) {
+  state.counters[name] = median(v);
+  state.counters[name + "_min"] = *std::min_element(v.begin(), v.end());
+  state.counters[name + "_max"] = *std::max_element(v.begin(), v.end());
+}
+
 // Homogeneous and heterogeneous runs back to back, the order alternating.
 void pair(benchmark::State& state, std::string kind) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
@@ -161,12 +168,8 @@ void pair(benchmark::State& state, std::string kind) {
     cpu_ratios.push_back(e[1] / cpu[1] / (e[0] / cpu[0]));
   }
   const double paths = static_cast<double>(kPaths) * static_cast<double>(it);
-  state.counters["ratio"] = median(wall_ratios);
-  state.counters["ratio_min"] = *std::min_element(wall_ratios.begin(), wall_ratios.end());
-  state.counters["ratio_max"] = *std::max_element(wall_ratios.begin(), wall_ratios.end());
-  state.counters["cpu_ratio"] = median(cpu_ratios);
-  state.counters["cpu_ratio_min"] = *std::min_element(cpu_ratios.begin(), cpu_ratios.end());
-  state.counters["cpu_ratio_max"] = *std::max_element(cpu_ratios.begin(), cpu_ratios.end());
+  report_spread(state, "ratio", wall_ratios);
+  report_spread(state, "cpu_ratio", cpu_ratios);
   state.counters["events/path_hom"] = events[0] / paths;
   state.counters["events/path_het"] = events[1] / paths;
 }
@@ -264,12 +267,8 @@ void wave(benchmark::State& state) {
     scalar_ratio.push_back(rate[1] / rate[0]);
   }
   const double paths = static_cast<double>(chunks * kChunkSamples) * static_cast<double>(it);
-  state.counters["wave"] = median(wave_ratio);
-  state.counters["wave_min"] = *std::min_element(wave_ratio.begin(), wave_ratio.end());
-  state.counters["wave_max"] = *std::max_element(wave_ratio.begin(), wave_ratio.end());
-  state.counters["scalar"] = median(scalar_ratio);
-  state.counters["scalar_min"] = *std::min_element(scalar_ratio.begin(), scalar_ratio.end());
-  state.counters["scalar_max"] = *std::max_element(scalar_ratio.begin(), scalar_ratio.end());
+  report_spread(state, "wave", wave_ratio);
+  report_spread(state, "scalar", scalar_ratio);
   for (int w = 0; w < 3; ++w) state.counters[std::string("events/path_") + "fsw"[w]] = events[w] / paths;
 }
 

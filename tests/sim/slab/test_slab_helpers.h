@@ -38,6 +38,21 @@ inline void expect_exact(const std::vector<mcref::Table>& tables, const std::str
   EXPECT_GT(c.cells, 0u);
 }
 
+// A conservative stack without substrate: the energy table against the white
+// furnace (R + T_scattered = 1 - T_delta), and, with the delta lobe, R + T = 1
+// to rounding for each of the `directions` incident directions (an analog walk
+// conserves energy exactly).
+inline void expect_white_furnace(const std::vector<mcref::Table>& t, const mcref::Experiment& ex, std::size_t directions) {
+  expect_exact(t, "brdf_energy", "white_furnace", ex);
+  const mcref::Table &r = find(t, "brdf_albedo"), &tr = find(t, "brdf_btdf_albedo");
+  const std::size_t comps = r.axes[2].size();
+  for (std::size_t d = 0; d < directions; ++d)
+    for (int c = 0; c < 3; ++c) {
+      const std::size_t total = (d * comps + comps - 1) * 3 + c;
+      EXPECT_NEAR(r.value(total) + tr.value(total), 1.0, 1e-12);
+    }
+}
+
 // Two independent simulations of the same medium: per cell, their difference
 // over the quadrature of both standard errors (batch spread), judged as an
 // exact model: p >= alpha and the Sidak |z| bound at alpha. `grey`: channel 0 only.
