@@ -4,7 +4,6 @@
 
 namespace mcref::sggx {
 
-
 double flake_reflectance(double gamma, double f0, Vec3 wi, Vec3 h) {
   return gamma * schlick(f0, std::fabs(dot(wi, h)));
 }

@@ -6,6 +6,8 @@
 // scattering point; wi toward the light, wo toward the receiver. A flake with
 // normal m sends wi to wo = 2 (wi.m) m - wi, so m = +-h with
 // h = normalize(wi + wo).
+#include <algorithm>
+
 #include "models/sggx/phase_sample.h"
 #include "models/sggx/sggx_distribution.h"
 

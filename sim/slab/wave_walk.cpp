@@ -98,10 +98,11 @@ struct Layer {
 };
 
 // Russian roulette once order >= from (walk.h): survives with probability
-// p = min(1, max weight), the weight divided by p (a zero weight, p = 0, ends
-// there; before, it goes on, adding zeros). u uniform in [0, 1). Returns 1 if
-// the path goes on, else 0 (flags are doubles in lane code: booleans
-// combined there stop the vectoriser).
+// p = min(1, max weight), the weight divided by p. A zero weight (p = 0) ends
+// the path there; at lower orders the path goes on, adding zeros to the tally,
+// where walk() ends it. u uniform in [0, 1). Returns 1 if the path goes on,
+// else 0 (flags are doubles in lane code: booleans combined there stop the
+// vectoriser).
 inline double roulette(double& r, double& g, double& b, double order, double from, double u) {
   const double p = order >= from ? std::min(1.0, std::max(r, std::max(g, b))) : 1.0;
   const double k = 1 / std::max(p, 0x1p-1022);  // (p = 0: the weights are 0)
