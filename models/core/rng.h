@@ -22,19 +22,24 @@ inline std::uint64_t stream_seed(std::initializer_list<std::uint64_t> keys) {
   return h;
 }
 
-// xoshiro256** (Blackman & Vigna), state filled by SplitMix64 from the seed.
+// One step of xoshiro256** (Blackman & Vigna) on the state s0..s3: the output.
+// (Also stepped on arrays of states by the data-parallel slab walk.)
+inline std::uint64_t xoshiro256ss_next(std::uint64_t& s0, std::uint64_t& s1, std::uint64_t& s2, std::uint64_t& s3) {
+  const auto rotl = [](std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); };
+  const std::uint64_t result = rotl((s1 << 2) + s1, 7) * 9;  // (s1 * 5 as shift and add: AVX2 has no 64-bit multiply)
+  const std::uint64_t t = s1 << 17;
+  s2 ^= s0; s3 ^= s1; s1 ^= s2; s0 ^= s3;
+  s2 ^= t; s3 = rotl(s3, 45);
+  return result;
+}
+
+// xoshiro256**, state filled by SplitMix64 from the seed.
 class Rng {
  public:
   explicit Rng(std::uint64_t seed) {
     for (int i = 0; i < 4; ++i) s_[i] = mix64(seed + 0x9e3779b97f4a7c15ULL * static_cast<std::uint64_t>(i));
   }
-  std::uint64_t next_u64() {
-    const std::uint64_t result = rotl(s_[1] * 5, 7) * 9;
-    const std::uint64_t t = s_[1] << 17;
-    s_[2] ^= s_[0]; s_[3] ^= s_[1]; s_[1] ^= s_[2]; s_[0] ^= s_[3];
-    s_[2] ^= t; s_[3] = rotl(s_[3], 45);
-    return result;
-  }
+  std::uint64_t next_u64() { return xoshiro256ss_next(s_[0], s_[1], s_[2], s_[3]); }
   // Uniform double in [0, 1) with 53 random bits.
   double uniform() { return static_cast<double>(next_u64() >> 11) * 0x1.0p-53; }
   // Poisson variate of mean `mean` by counting unit-rate exponential arrivals
@@ -46,7 +51,6 @@ class Rng {
   }
 
  private:
-  static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
   std::uint64_t s_[4];
 };
 

@@ -37,10 +37,24 @@ inline constexpr std::array<double, 10> kSinWide = series<10>(1);  // to d^19
 inline constexpr std::array<double, 11> kCosWide = series<11>(0);  // to d^20
 }  // namespace detail
 
+namespace detail {
+// The series of sincos_small, without its range check.
+inline SinCos sincos_series(double d) {
+  const double z = d * d;
+  return {d * polynomial(kSin, z), polynomial(kCos, z)};
+}
+// sin and cos of d + q pi/2 from those of d, by selects (no table, no branch):
+// cos(d + q pi/2) = {c, -s, -c, s}[q mod 4], sin(d + q pi/2) = {s, c, -s, -c}[q mod 4].
+inline SinCos rotate_quarter_turns(SinCos r, int q) {
+  const bool odd = q & 1;
+  const double s = odd ? r.cos : r.sin, c = odd ? r.sin : r.cos;
+  return {q & 2 ? -s : s, (q + 1) & 2 ? -c : c};
+}
+}  // namespace detail
+
 inline SinCos sincos_small(double d) {
   if (!(std::fabs(d) <= 1.5)) return {std::sin(d), std::cos(d)};
-  const double z = d * d;
-  return {d * polynomial(detail::kSin, z), polynomial(detail::kCos, z)};
+  return detail::sincos_series(d);
 }
 
 // sin x and cos x for |x| <= pi (else the library): the series about pi/2,
@@ -56,10 +70,16 @@ inline SinCos sincos_within_pi(double x) {
 inline SinCos sincos_turn(double u) {
   if (!(u >= 0 && u < 0x1p50)) return {std::sin(2 * kPi * u), std::cos(2 * kPi * u)};
   const std::int64_t q = static_cast<std::int64_t>(4 * u + 0.5);  // nearest quarter turn for u >= 0
-  const SinCos r = sincos_small(2 * kPi * (u - 0.25 * static_cast<double>(q)));
-  // Rotate by q quarter turns: cos(d + q pi/2) = v[-q mod 4], sin(d + q pi/2) = v[(1 - q) mod 4].
-  const double v[4] = {r.cos, r.sin, -r.cos, -r.sin};
-  return {v[(1 - q) & 3], v[-q & 3]};
+  const SinCos r = detail::sincos_series(2 * kPi * (u - 0.25 * static_cast<double>(q)));
+  return detail::rotate_quarter_turns(r, static_cast<int>(q & 3));
+}
+
+// The same for 0 <= u <= 1 (a uniform random number), bit for bit, without
+// the range check: no branch and no library call, so loops over many u
+// vectorise.
+inline SinCos sincos_turn_unit(double u) {
+  const int q = static_cast<int>(4 * u + 0.5);
+  return detail::rotate_quarter_turns(detail::sincos_series(2 * kPi * (u - 0.25 * q)), q);
 }
 
 }  // namespace mcref

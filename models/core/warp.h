@@ -1,5 +1,7 @@
 #pragma once
 // Warps from the unit square to common domains (pbrt-v4 style).
+#include <algorithm>
+
 #include "models/core/rng.h"
 #include "models/core/small_angle.h"
 #include "models/core/vec.h"
@@ -9,7 +11,7 @@ namespace mcref {
 // Uniform point on the unit disc (concentric map not needed: polar is exact).
 inline void sample_uniform_disc(double u1, double u2, double& x, double& y) {
   const double r = std::sqrt(u1);
-  const SinCos phi = sincos_turn(u2);  // phi = 2 pi u2
+  const SinCos phi = sincos_turn_unit(u2);  // phi = 2 pi u2
   x = r * phi.cos;
   y = r * phi.sin;
 }
@@ -57,8 +59,8 @@ inline Vec3 sample_cosine_about(Vec3 n, Rng& rng) {
 
 // Uniform direction on the unit sphere, pdf = 1/(4 pi).
 inline Vec3 sample_uniform_sphere(double u1, double u2) {
-  const double z = 1 - 2 * u1, r = std::sqrt(std::fmax(0.0, 1 - z * z));
-  const SinCos phi = sincos_turn(u2);  // phi = 2 pi u2
+  const double z = 1 - 2 * u1, r = std::sqrt(std::max(0.0, 1 - z * z));  // (max: vectorises)
+  const SinCos phi = sincos_turn_unit(u2);  // phi = 2 pi u2
   return {r * phi.cos, r * phi.sin, z};
 }
 

@@ -4,12 +4,6 @@
 
 namespace mcref::sggx {
 
-double schlick(double f0, double cos_theta) {
-  const double c = std::fmin(1.0, std::fmax(0.0, cos_theta));
-  const double k = 1 - c, k2 = k * k;
-  return f0 + (1 - f0) * k2 * k2 * k;
-}
-
 double flake_reflectance(double gamma, double f0, Vec3 wi, Vec3 h) {
   return gamma * schlick(f0, std::fabs(dot(wi, h)));
 }

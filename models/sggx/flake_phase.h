@@ -6,13 +6,19 @@
 // scattering point; wi toward the light, wo toward the receiver. A flake with
 // normal m sends wi to wo = 2 (wi.m) m - wi, so m = +-h with
 // h = normalize(wi + wo).
+#include <algorithm>
+
 #include "models/sggx/phase_sample.h"
 #include "models/sggx/sggx_distribution.h"
 
 namespace mcref::sggx {
 
 // Schlick's approximation f0 + (1 - f0)(1 - c)^5 for a cosine c in [0, 1].
-double schlick(double f0, double cos_theta);
+inline double schlick(double f0, double cos_theta) {
+  const double c = std::min(1.0, std::max(0.0, cos_theta));  // (as fmin/fmax, NaN included; vectorises)
+  const double k = 1 - c, k2 = k * k;
+  return f0 + (1 - f0) * k2 * k2 * k;
+}
 // Flake reflectance F(h) = gamma * Schlick(f0, |wi.h|); one colour channel.
 // |wi.h| = |wo.h|, so F is reciprocal. gamma is the flake albedo.
 double flake_reflectance(double gamma, double f0, Vec3 wi, Vec3 h);

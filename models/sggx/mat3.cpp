@@ -32,13 +32,6 @@ Mat3 from_columns(Vec3 c0, Vec3 c1, Vec3 c2) {
   return r;
 }
 
-Mat3 transpose(const Mat3& a) {
-  Mat3 r;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) r.m[i][j] = a.m[j][i];
-  return r;
-}
-
 Mat3 operator+(const Mat3& a, const Mat3& b) {
   Mat3 r;
   for (int i = 0; i < 3; ++i)
@@ -59,12 +52,6 @@ Mat3 operator*(const Mat3& a, const Mat3& b) {
     for (int j = 0; j < 3; ++j)
       r.m[i][j] = a.m[i][0] * b.m[0][j] + a.m[i][1] * b.m[1][j] + a.m[i][2] * b.m[2][j];
   return r;
-}
-
-Vec3 operator*(const Mat3& a, Vec3 v) {
-  return {a.m[0][0] * v.x + a.m[0][1] * v.y + a.m[0][2] * v.z,
-          a.m[1][0] * v.x + a.m[1][1] * v.y + a.m[1][2] * v.z,
-          a.m[2][0] * v.x + a.m[2][1] * v.y + a.m[2][2] * v.z};
 }
 
 double determinant(const Mat3& a) {
@@ -88,8 +75,6 @@ Mat3 inverse(const Mat3& a) {
   r.m[2][2] = m[0][0] * m[1][1] - m[0][1] * m[1][0];
   return r * (1.0 / determinant(a));
 }
-
-double quadratic_form(const Mat3& a, Vec3 v) { return dot(v, a * v); }
 
 bool cholesky_lower(const Mat3& a, Mat3& l) {
   l = Mat3{};

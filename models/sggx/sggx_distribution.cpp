@@ -51,22 +51,10 @@ double ndf_eq7_as_printed(const Sggx& s, double alpha, Vec3 m) {
   return 1.0 / (kPi * alpha * q * q);
 }
 
-double projected_area(const Sggx& s, Vec3 w) {
-  return std::sqrt(std::fmax(0.0, quadratic_form(s.S, w)));
-}
-
 double visible_ndf(const Sggx& s, Vec3 w, Vec3 m) {
   const double c = dot(w, m);
   if (c <= 0) return 0;
   return c * ndf(s, m) / projected_area(s, w);
-}
-
-Vec3 sample_visible_normal(const Sggx& s, Vec3 w, double u1, double u2) {
-  const Vec3 wu = normalize(transpose(s.L) * w);        // view direction in ball space
-  const Vec3 u = Frame(wu).to_world(sample_cosine_hemisphere(u1, u2));  // visible point
-  Vec3 m = normalize(s.L * u);                           // ellipsoid normal there
-  if (dot(m, w) < 0) m = -m;                             // rounding at the silhouette
-  return m;
 }
 
 }  // namespace mcref::sggx

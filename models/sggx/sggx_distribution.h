@@ -9,7 +9,12 @@
 // (e.g. S = I gives D = 1/pi and \int D dm = 4). The visible normal density
 //   D_w(m) = <w.m>^+ D(m) / sigma(w)
 // integrates to 1 over the sphere.
+#include <algorithm>
+#include <cmath>
+
+#include "models/core/frame.h"
 #include "models/core/vec.h"
+#include "models/core/warp.h"
 #include "models/sggx/mat3.h"
 
 namespace mcref::sggx {
@@ -39,7 +44,8 @@ double ndf(const Sggx& s, Vec3 m);
 // surface-like S (sqrt det S = alpha^2). For reports only.
 double ndf_eq7_as_printed(const Sggx& s, double alpha, Vec3 m);
 // sigma(w) = sqrt(w^T S w) = \int <w.m>^+ D(m) dm  (Eq. 3 and 7).
-double projected_area(const Sggx& s, Vec3 w);
+// (std::max, not std::fmax: the same for any q, NaN included, and it vectorises.)
+inline double projected_area(const Sggx& s, Vec3 w) { return std::sqrt(std::max(0.0, quadratic_form(s.S, w))); }
 // Visible normal density <w.m>^+ D(m) / sigma(w) w.r.t. solid angle of m.
 double visible_ndf(const Sggx& s, Vec3 w, Vec3 m);
 // Visible normal for direction w (unit), distributed as visible_ndf(s, w, .):
@@ -50,6 +56,12 @@ double visible_ndf(const Sggx& s, Vec3 w, Vec3 m);
 // point in the ellipsoid's projected area, i.e. an exact vNDF sample (the same
 // construction as Heitz 2015 Sec. 5 / sample_VNDF, written with Cholesky).
 // u1, u2 uniform in [0, 1). Always returns m with dot(w, m) >= 0.
-Vec3 sample_visible_normal(const Sggx& s, Vec3 w, double u1, double u2);
+// (Inline, branch-free: the wave walk vectorises it.)
+inline Vec3 sample_visible_normal(const Sggx& s, Vec3 w, double u1, double u2) {
+  const Vec3 wu = normalize(transpose(s.L) * w);                        // view direction in ball space
+  const Vec3 u = Frame(wu).to_world(sample_cosine_hemisphere(u1, u2));  // visible point
+  const Vec3 m = normalize(s.L * u);                                    // ellipsoid normal there
+  return m * (dot(m, w) < 0 ? -1.0 : 1.0);  // rounding at the silhouette (a select of numbers, not of vectors)
+}
 
 }  // namespace mcref::sggx

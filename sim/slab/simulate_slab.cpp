@@ -14,6 +14,7 @@
 #include "sim/slab/free_flight.h"
 #include "sim/slab/medium.h"
 #include "sim/slab/walk.h"
+#include "sim/slab/wave_walk.h"
 
 namespace mcref {
 
@@ -73,8 +74,12 @@ std::vector<Table> simulate_slab(const Experiment& ex, const BatchLoop& loop) {
           const Vec3 wi = spherical_direction(m.theta_i[i], phi_i);
           sums.push_back(run_chunks(static_cast<std::uint64_t>(m.samples), layout.sums_size(),
                                     key.with(i * m.phi_i.size() + j), [&](Rng& rng, std::uint64_t count, Sums& s) {
-                                      auto flight = volume::make_flight(medium);
                                       BrdfAccumulator acc(layout, phi_i, s);
+                                      if (ex.slab.wave_walk) {
+                                        volume::wave_walk(medium, ws, wi, count, rng, acc);
+                                        return;
+                                      }
+                                      auto flight = volume::make_flight(medium);
                                       for (std::uint64_t n = 0; n < count; ++n)
                                         volume::walk(medium, *flight, ws, wi, rng, acc);
                                     }));

@@ -7,6 +7,7 @@
 //   substrate_eta = 0.2, substrate_k = 3.9       conductors: complex IOR, one value or [r, g, b]
 //   substrate_alpha                             rough_conductor (GGX), required
 //   delta_transmission = true                   record the unscattered transmission
+//   walk = "scalar" | "wave"                    path by path, or data-parallel (one homogeneous layer)
 //   backend = "homogeneous" | "openvdb"         free-flight sampling (default homogeneous)
 //   tile = 1.0, lateral_voxels = 4, depth_voxels = 32   openvdb grid
 //   [[geometry.layer]]                           top to bottom, at least one
@@ -24,6 +25,7 @@
 #include <cmath>
 
 #include "sim/experiment/experiment_parts.h"
+#include "sim/slab/wave_walk.h"
 
 namespace mcref {
 
@@ -131,6 +133,9 @@ void read_slab_geometry(TomlReader& g, Experiment& e) {
   if (static_cast<double>(s.grid.lateral_voxels + 1) * (s.grid.lateral_voxels + 1) * (s.grid.depth_voxels + 1) *
           s.layers.size() > 2e8)
     g.fail("depth_voxels", "the grids would hold more than 2e8 voxels; use fewer lateral_voxels or depth_voxels");
+  s.wave_walk = g.string("walk", {"scalar", "wave"}, std::string("scalar")) == "wave";
+  if (s.wave_walk)
+    if (const std::string why = volume::wave_walk_unsupported(s); !why.empty()) g.fail("walk", why);
   for (std::size_t i = 0; i < s.layers.size(); ++i)
     if (!s.grid.openvdb && s.layers[i].profile.kind != DensityProfile::Kind::kConstant)
       throw ConfigError(e.file, "geometry.layer." + std::to_string(i) + ".profile",

@@ -8,16 +8,21 @@
 namespace mcref::volume {
 
 SubstrateSample sample_substrate(const SlabSubstrate& s, Vec3 wi, Rng& rng) {
+  using K = SlabSubstrate::Kind;
+  if (s.kind != K::kLambertian && s.kind != K::kRoughConductor) return sample_substrate(s, wi, 0.0, 0.0);  // draws nothing
+  const double u1 = rng.uniform(), u2 = rng.uniform();
+  return sample_substrate(s, wi, u1, u2);
+}
+
+SubstrateSample sample_substrate(const SlabSubstrate& s, Vec3 wi, double u1, double u2) {
   SubstrateSample r;
   switch (s.kind) {
     case SlabSubstrate::Kind::kNone: return r;
-    case SlabSubstrate::Kind::kLambertian: {
-      const double u1 = rng.uniform(), u2 = rng.uniform();
+    case SlabSubstrate::Kind::kLambertian:
       r.wo = sample_cosine_hemisphere(u1, u2);
       r.weight = s.albedo;
       r.valid = true;
       return r;
-    }
     case SlabSubstrate::Kind::kConductor:
       r.wo = {-wi.x, -wi.y, wi.z};
       r.weight = fresnel_conductor(wi.z, s.eta, s.k);
@@ -26,7 +31,6 @@ SubstrateSample sample_substrate(const SlabSubstrate& s, Vec3 wi, Rng& rng) {
       return r;
     case SlabSubstrate::Kind::kRoughConductor: break;
   }
-  const double u1 = rng.uniform(), u2 = rng.uniform();
   const Vec3 m = sample_ggx_visible_normal(s.alpha, wi, u1, u2);
   const double c = dot(wi, m);
   r.wo = m * (2 * c) - wi;

@@ -19,6 +19,8 @@ struct SubstrateSample {
 
 // wi points up (toward where the light came from), wi.z > 0.
 SubstrateSample sample_substrate(const SlabSubstrate& s, Vec3 wi, Rng& rng);
+// The same from two uniforms in [0, 1) (the smooth conductor ignores them).
+SubstrateSample sample_substrate(const SlabSubstrate& s, Vec3 wi, double u1, double u2);
 // f(wi, wo) without the cosine (0 for the smooth conductor: a delta lobe).
 Rgb eval_substrate(const SlabSubstrate& s, Vec3 wi, Vec3 wo);
 

@@ -17,11 +17,18 @@
 //  slab/floor       : a minimal homogeneous walk written here (one layer, exact
 //                     exponential flights, the same SGGX vNDF sampler, no tally,
 //                     no virtual calls, plain analog absorption by albedo): the floor.
+//  slab/wave        : the data-parallel walk (sim/slab/wave_walk.h), the floor
+//                     and the full scalar walk on the same medium, 1 thread each,
+//                     back to back in every iteration (order rotating; 9 iterations),
+//                     2^15 paths each; counters: wave = median over the iterations of
+//                     wave / floor events per second of the thread's CPU time, with min
+//                     and max; scalar the same for the full scalar walk (walk.h).
 //  slab/bsdf32      : paths/s over 32 incident directions stratified in cos theta_i
 //                     (the paper's Sec. 5 grid in theta); the time of one 32 x 32-direction
 //                     BSDF at 1e5 paths per direction is extrapolated as 1024 * 1e5 / (paths/s).
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
+#include <time.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
@@ -39,6 +46,7 @@
 #include "sim/slab/free_flight.h"
 #include "sim/slab/medium.h"
 #include "sim/slab/walk.h"
+#include "sim/slab/wave_walk.h"
 
 namespace {
 
@@ -127,6 +135,13 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// name = median of v, name_min and name_max.
+void report_spread(benchmark::State& state, const std::string& name, const std::vector<double>& v) {
+  state.counters[name] = median(v);
+  state.counters[name + "_min"] = *std::min_element(v.begin(), v.end());
+  state.counters[name + "_max"] = *std::max_element(v.begin(), v.end());
+}
+
 // Homogeneous and heterogeneous runs back to back, the order alternating.
 void pair(benchmark::State& state, std::string kind) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
@@ -153,12 +168,8 @@ void pair(benchmark::State& state, std::string kind) {
     cpu_ratios.push_back(e[1] / cpu[1] / (e[0] / cpu[0]));
   }
   const double paths = static_cast<double>(kPaths) * static_cast<double>(it);
-  state.counters["ratio"] = median(wall_ratios);
-  state.counters["ratio_min"] = *std::min_element(wall_ratios.begin(), wall_ratios.end());
-  state.counters["ratio_max"] = *std::max_element(wall_ratios.begin(), wall_ratios.end());
-  state.counters["cpu_ratio"] = median(cpu_ratios);
-  state.counters["cpu_ratio_min"] = *std::min_element(cpu_ratios.begin(), cpu_ratios.end());
-  state.counters["cpu_ratio_max"] = *std::max_element(cpu_ratios.begin(), cpu_ratios.end());
+  report_spread(state, "ratio", wall_ratios);
+  report_spread(state, "cpu_ratio", cpu_ratios);
   state.counters["events/path_hom"] = events[0] / paths;
   state.counters["events/path_het"] = events[1] / paths;
 }
@@ -202,6 +213,65 @@ void floor_walk(benchmark::State& state) {
   state.counters["events/path"] = static_cast<double>(events) / static_cast<double>(paths);
 }
 
+// CPU time of the calling thread, s.
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// The floor, the full scalar walk and the wave walk, 1 thread, on the calling thread.
+void wave(benchmark::State& state) {
+  const Experiment ex = slab(false);
+  const volume::SlabMedium medium(ex.slab);
+  const sggx::Sggx s = sggx::surface_like(0.5, {0, 0, 1});
+  const Vec3 wi = spherical_direction(30 * kPi / 180, 0);
+  BrdfLayout layout;
+  layout.transmission = true;
+  layout.order1_classes = {"volume", "substrate"};
+  const volume::WalkSettings ws;
+  const std::uint64_t chunks = (kPaths / 2) / kChunkSamples;
+  // Events of one run of `which` (0 floor, 1 scalar walk, 2 wave walk).
+  const auto run = [&](int which, std::uint64_t it) {
+    std::uint64_t events = 0;
+    Sums sums(layout.sums_size(), 0.0);
+    BrdfAccumulator acc(layout, 0.0, sums);
+    const auto flight = volume::make_flight(medium);
+    for (std::uint64_t c = 0; c < chunks; ++c) {
+      Rng rng(stream_seed({it, c}));
+      if (which == 2) {
+        events += volume::wave_walk(medium, ws, wi, kChunkSamples, rng, acc);
+        continue;
+      }
+      for (std::uint64_t n = 0; n < kChunkSamples; ++n)
+        events += which == 0 ? floor_path(s, 5.0, 0.9, -wi, rng)
+                             : static_cast<std::uint64_t>(volume::walk(medium, *flight, ws, wi, rng, acc));
+    }
+    benchmark::DoNotOptimize(sums.data());
+    return static_cast<double>(events);
+  };
+  std::vector<double> wave_ratio, scalar_ratio;
+  double events[3] = {0, 0, 0};
+  std::uint64_t it = 0;
+  for (auto _ : state) {
+    ++it;
+    double rate[3];
+    for (int k = 0; k < 3; ++k) {
+      const int which = static_cast<int>((k + it) % 3);
+      const double t0 = thread_cpu_seconds();
+      const double e = run(which, it);
+      rate[which] = e / (thread_cpu_seconds() - t0);
+      events[which] += e;
+    }
+    wave_ratio.push_back(rate[2] / rate[0]);
+    scalar_ratio.push_back(rate[1] / rate[0]);
+  }
+  const double paths = static_cast<double>(chunks * kChunkSamples) * static_cast<double>(it);
+  report_spread(state, "wave", wave_ratio);
+  report_spread(state, "scalar", scalar_ratio);
+  for (int w = 0; w < 3; ++w) state.counters[std::string("events/path_") + "fsw"[w]] = events[w] / paths;
+}
+
 void bsdf32(benchmark::State& state) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
   const Experiment ex = slab(false);
@@ -224,6 +294,7 @@ BENCHMARK_CAPTURE(engine, openvdb, true)->Name("slab/openvdb")->UseRealTime()->U
 BENCHMARK_CAPTURE(pair, linear, "linear")->Name("slab/pair/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(pair, lateral, "lateral")->Name("slab/pair/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(floor_walk)->Name("slab/floor")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK(wave)->Name("slab/wave")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(bsdf32)->Name("slab/bsdf32")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 BENCHMARK_MAIN();

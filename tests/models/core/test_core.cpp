@@ -10,6 +10,7 @@
 #include "models/core/frame.h"
 #include "models/core/quadrature.h"
 #include "models/core/rng.h"
+#include "models/core/simd_log.h"
 #include "models/core/small_angle.h"
 #include "models/core/statistics.h"
 #include "models/core/triangle_cut.h"
@@ -153,6 +154,37 @@ TEST(TriangleCut, FusedPointEqualsTheCutsPoint) {
   }
   EXPECT_LT(worst, 1e-13);
   EXPECT_EQ(triangle_cut_point(0.3, 0.0, 1.0, 1.0, 0.5, 0.7), 0.3);  // an end of the domain
+}
+
+// The branch-free version gives sincos_turn's bits on [0, 1].
+TEST(SmallAngle, TurnUnitEqualsTurn) {
+  for (int k = 0; k <= 40000; ++k) {
+    const double u = std::min(1.0, k / 40000.0 + (k % 7) * 1e-7);
+    const SinCos a = sincos_turn_unit(u), b = sincos_turn(u);
+    ASSERT_EQ(a.sin, b.sin) << u;
+    ASSERT_EQ(a.cos, b.cos) << u;
+  }
+}
+
+// Within 2 ulp of the library's log over normal numbers of every exponent,
+// near 1 (where log -> 0) and at the walk's arguments 2^-52 k.
+TEST(SimdLog, MatchesTheLibrary) {
+  Rng rng(7);
+  double worst = 0;
+  for (int k = 0; k < 300000; ++k) {
+    double x;
+    if (k % 3 == 0) x = std::ldexp(0.5 + 0.5 * rng.uniform(), static_cast<int>(rng.below(2040)) - 1020);
+    else if (k % 3 == 1) x = 1 + (rng.uniform() - 0.5) * 1e-6;
+    else x = static_cast<double>((rng.next_u64() >> 12) + 1) * 0x1p-52;
+    const double a = simd_log(x), b = std::log(x);
+    if (b == 0) {
+      EXPECT_EQ(a, 0.0);
+      continue;
+    }
+    worst = std::max(worst, std::fabs(a - b) / std::fabs(b));
+  }
+  EXPECT_LE(worst, 2 * 0x1p-52);  // (measured: 1 ulp)
+  EXPECT_EQ(simd_log(1.0), 0.0);
 }
 
 TEST(TriangleCut, MapsUniformSamplesOntoTheTarget) {

@@ -4,6 +4,7 @@
 // Sidak |z| bound at 0.001).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,41 @@ inline void expect_exact(const std::vector<mcref::Table>& tables, const std::str
   const mcref::Verdict v = mcref::judge(c, true, 1e-3, 0);
   EXPECT_EQ(v.status, "pass") << table << " vs " << model << ": " << v.reason;
   EXPECT_GT(c.cells, 0u);
+}
+
+// A conservative stack without substrate: the energy table against the white
+// furnace (R + T_scattered = 1 - T_delta), and, with the delta lobe, R + T = 1
+// to rounding for each of the `directions` incident directions (an analog walk
+// conserves energy exactly).
+inline void expect_white_furnace(const std::vector<mcref::Table>& t, const mcref::Experiment& ex, std::size_t directions) {
+  expect_exact(t, "brdf_energy", "white_furnace", ex);
+  const mcref::Table &r = find(t, "brdf_albedo"), &tr = find(t, "brdf_btdf_albedo");
+  const std::size_t comps = r.axes[2].size();
+  for (std::size_t d = 0; d < directions; ++d)
+    for (int c = 0; c < 3; ++c) {
+      const std::size_t total = (d * comps + comps - 1) * 3 + c;
+      EXPECT_NEAR(r.value(total) + tr.value(total), 1.0, 1e-12);
+    }
+}
+
+// Two independent simulations of the same medium: per cell, their difference
+// over the quadrature of both standard errors (batch spread), judged as an
+// exact model: p >= alpha and the Sidak |z| bound at alpha. `grey`: channel 0 only.
+inline void expect_same(const std::vector<mcref::Table>& ta, const std::vector<mcref::Table>& tb,
+                        const std::vector<std::string>& names, bool grey, double alpha = 1e-3) {
+  for (const std::string& name : names) {
+    const mcref::Table &a = find(ta, name), &b = find(tb, name);
+    std::vector<double> diff(a.cells()), se(a.cells()), zero(a.cells(), 0.0);
+    for (std::size_t i = 0; i < a.cells(); ++i) {
+      diff[i] = a.value(i) - b.value(i);
+      se[i] = std::hypot(a.stderr_of(i), b.stderr_of(i));
+      if (grey && i % 3) diff[i] = NAN;
+    }
+    const mcref::Comparison c = mcref::compare(diff, se, zero, a.batches);
+    const mcref::Verdict verdict = mcref::judge(c, true, alpha, 0);
+    EXPECT_EQ(verdict.status, "pass") << name << ": " << verdict.reason;
+    EXPECT_GT(c.cells, 0u) << name;
+  }
 }
 
 // The same sums, bit for bit, on 1 and 2 threads.

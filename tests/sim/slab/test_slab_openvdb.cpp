@@ -39,21 +39,9 @@ samples = 30000
 }  // namespace
 
 namespace {
-// Two independent simulations: their difference over the quadrature of both errors.
 void expect_same(const Experiment& h, const Experiment& v) {
-  const std::vector<Table> th = slab_test::run(h), tv = slab_test::run(v);
-  for (const char* name : {"brdf", "brdf_btdf", "brdf_albedo", "brdf_btdf_albedo"}) {
-    const Table &a = slab_test::find(th, name), &b = slab_test::find(tv, name);
-    std::vector<double> diff(a.cells()), se(a.cells()), zero(a.cells(), 0.0);
-    for (std::size_t i = 0; i < a.cells(); ++i) {
-      diff[i] = a.value(i) - b.value(i);
-      se[i] = std::hypot(a.stderr_of(i), b.stderr_of(i));
-      if (i % 3) diff[i] = NAN;  // grey: one channel
-    }
-    const Comparison c = compare(diff, se, zero, a.batches);
-    const Verdict verdict = judge(c, true, 1e-3, 0);
-    EXPECT_EQ(verdict.status, "pass") << name << ": " << verdict.reason;
-  }
+  slab_test::expect_same(slab_test::run(h), slab_test::run(v), {"brdf", "brdf_btdf", "brdf_albedo", "brdf_btdf_albedo"},
+                         true);
 }
 
 // A tilted fibre layer (all six components of S non-zero, anisotropic medium)

@@ -1,0 +1,296 @@
+#include "sim/slab/wave_walk.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <memory>
+
+#include "models/core/frame.h"
+#include "models/core/simd_log.h"
+#include "models/core/small_angle.h"
+#include "models/core/warp.h"
+#include "models/sggx/flake_phase.h"
+#include "models/sggx/hg_phase.h"
+#include "models/sggx/sggx_distribution.h"
+#include "sim/slab/substrate.h"
+
+// The two vector stages are built for AVX-512 (x86-64-v4), AVX2 (x86-64-v3)
+// and baseline x86-64, the loader picking one (GCC function multi-versioning).
+// This file is compiled without FMA contraction (CMakeLists.txt), so every
+// version computes the same bits.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define MCREF_WAVE_STAGE __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default"), flatten))
+#else
+#define MCREF_WAVE_STAGE
+#endif
+
+namespace mcref::volume {
+
+namespace {
+
+constexpr int N = kWaveLanes;
+// Small integers are held as doubles in the lanes: a loop then has one lane
+// type, which the vectoriser needs for its selects.
+constexpr double kCollision = 0, kTop = 1, kBottom = 2, kLost = 3;  // flight outcomes
+constexpr double kGoesOn = 0, kEnded = 1, kScalar = 2;              // lane status after a step
+
+// The paths in flight, one per lane.
+struct Paths {
+  alignas(64) double dx[N], dy[N], dz[N];  // propagation direction
+  alignas(64) double depth[N];
+  alignas(64) double wr[N], wg[N], wb[N];  // RGB weight
+  alignas(64) double order[N], first_class[N], delta[N];
+
+  Rgb weight(int i) const { return {wr[i], wg[i], wb[i]}; }
+  void start(int i, Vec3 d) {
+    dx[i] = d.x, dy[i] = d.y, dz[i] = d.z;
+    depth[i] = 0;
+    wr[i] = wg[i] = wb[i] = 1;
+    order[i] = 0, first_class[i] = kClassVolume, delta[i] = 1;
+  }
+  void move(int from, int to) {
+    dx[to] = dx[from], dy[to] = dy[from], dz[to] = dz[from], depth[to] = depth[from];
+    wr[to] = wr[from], wg[to] = wg[from], wb[to] = wb[from];
+    order[to] = order[from], first_class[to] = first_class[from], delta[to] = delta[from];
+  }
+};
+
+// One xoshiro256** generator per lane.
+struct Streams {
+  alignas(64) std::uint64_t s0[N], s1[N], s2[N], s3[N];
+
+  std::uint64_t next(int i) { return xoshiro256ss_next(s0[i], s1[i], s2[i], s3[i]); }
+  // Uniform in [1, 2) with 52 random bits, by the bits alone (no int64 -> double conversion).
+  double one_to_two(int i) {
+    const std::uint64_t b = (next(i) >> 12) | 0x3ff0000000000000ULL;
+    double v;
+    std::memcpy(&v, &b, 8);
+    return v;
+  }
+  double uniform(int i) { return one_to_two(i) - 1; }  // [0, 1), exact
+  void move(int from, int to) { s0[to] = s0[from], s1[to] = s1[from], s2[to] = s2[from], s3[to] = s3[from]; }
+};
+
+// What the last step did to each lane.
+struct Steps {
+  alignas(64) double event[N];   // outcome of the flight
+  alignas(64) double status[N];  // kGoesOn, kEnded, or kScalar (left the layer: scalar code decides)
+};
+
+// Everything the stages touch, in one object (so the compiler sees that no two
+// arrays overlap). The scatter stage reads one of a and b and writes the other.
+struct Lanes {
+  Paths a, b;
+  Streams r;
+  Steps st;
+  template <bool kB>
+  Paths& paths() {
+    if constexpr (kB) return b; else return a;
+  }
+};
+
+// The layer, copied into the stages (locals: no aliasing with the lanes).
+struct Layer {
+  SlabPhase phase;
+  double thickness, density, g;
+  sggx::Sggx s;
+  Rgb albedo, f0;
+};
+
+// Russian roulette once order >= from (walk.h): survives with probability
+// p = min(1, max weight), the weight divided by p. A zero weight (p = 0) ends
+// the path there; at lower orders the path goes on, adding zeros to the tally,
+// where walk() ends it. u uniform in [0, 1). Returns 1 if the path goes on,
+// else 0 (flags are doubles in lane code: booleans combined there stop the
+// vectoriser).
+inline double roulette(double& r, double& g, double& b, double order, double from, double u) {
+  const double p = order >= from ? std::min(1.0, std::max(r, std::max(g, b))) : 1.0;
+  const double k = 1 / std::max(p, 0x1p-1022);  // (p = 0: the weights are 0)
+  r *= k, g *= k, b *= k;
+  return u < p ? 1.0 : 0.0;
+}
+
+// The direction at cosine c from the unit axis, azimuth 2 pi u about it.
+inline Vec3 deflect(Vec3 axis, double c, double u) {
+  const double s = std::sqrt(std::max(0.0, 1 - c * c));
+  const SinCos phi = sincos_turn_unit(u);
+  return normalize(Frame(axis).to_world({s * phi.cos, s * phi.sin, c}));
+}
+
+// Free flights through the layer (exact exponential, sigma_t = rho sigma(w),
+// Eq. 3), as free_flight.cpp's track() for one layer.
+// (The stages copy what they read of the layer into locals: conditional loads
+// through a pointer would stop the loop's if-conversion.)
+template <bool kSggx, bool kB>
+inline void fly_lanes(Lanes& L, int n, const Layer& layer) {
+  const Layer l = layer;
+  Paths& p = L.paths<kB>();
+  Streams& r = L.r;
+  Steps& st = L.st;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 d{p.dx[i], p.dy[i], p.dz[i]};
+    const double tau = -simd_log(2 - r.one_to_two(i));  // -log(1 - u), 1 - u in (0, 1]
+    const double mu = l.density * (kSggx ? sggx::projected_area(l.s, d) : 1.0);
+    const double rate = -d.z, depth = p.depth[i];  // d(depth)/ds
+    const double dist = rate > 0 ? (l.thickness - depth) / rate : rate < 0 ? -depth / rate : INFINITY;
+    const bool collide = tau < mu * dist;
+    p.depth[i] = collide ? depth + rate * (tau / mu) : rate > 0 ? l.thickness : 0.0;
+    st.event[i] = collide ? kCollision : !(dist < INFINITY) ? kLost : rate > 0 ? kBottom : kTop;
+  }
+}
+
+// (On paths b if in_b, else a.)
+MCREF_WAVE_STAGE void fly(Lanes& L, bool in_b, int n, const Layer& l) {
+  const bool sggx = l.phase == SlabPhase::kSggxSurface || l.phase == SlabPhase::kSggxFiber;
+  if (sggx && in_b) fly_lanes<true, true>(L, n, l);
+  if (sggx && !in_b) fly_lanes<true, false>(L, n, l);
+  if (!sggx && in_b) fly_lanes<false, true>(L, n, l);
+  if (!sggx && !in_b) fly_lanes<false, false>(L, n, l);
+}
+
+// The phase-function event of every lane that collided, as walk() does it
+// (order, first class, weight, direction, roulette), from `in` into `out`;
+// the other lanes are copied. The draws are made for every lane, and unused
+// where the flight left the layer. (Into other arrays: a store of an unchanged
+// value back into its own array would be dropped, and the store become
+// conditional, which stops the vectoriser.)
+template <SlabPhase kPhase, bool kFromB>
+inline void scatter_lanes(Lanes& L, int n, const Layer& layer, int max_order, int roulette_from) {
+  const Layer l = layer;
+  const double cap = max_order > 0 ? max_order : INFINITY, from = roulette_from;  // order cap, roulette start
+  const Paths& in = L.paths<kFromB>();
+  Paths& out = L.paths<!kFromB>();
+  Streams& r = L.r;
+  Steps& st = L.st;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 wi{-in.dx[i], -in.dy[i], -in.dz[i]};
+    const double u1 = r.uniform(i), u2 = r.uniform(i);
+    Vec3 wo;
+    double fr = l.albedo.r, fg = l.albedo.g, fb = l.albedo.b;
+    double valid = 1;
+    if constexpr (kPhase == SlabPhase::kSggxSurface) {  // both SGGX kinds: phase.cpp's sample_sggx_flakes
+      const Vec3 m = sggx::sample_visible_normal(l.s, wi, u1, u2);
+      const double c = dot(wi, m), ac = std::fabs(c);
+      wo = normalize(m * (2 * c) - wi);
+      fr *= sggx::schlick(l.f0.r, ac), fg *= sggx::schlick(l.f0.g, ac), fb *= sggx::schlick(l.f0.b, ac);
+      valid = c > 0 ? 1.0 : 0.0;
+    } else if constexpr (kPhase == SlabPhase::kHenyeyGreenstein) {
+      wo = deflect(-wi, sggx::sample_hg_cos_theta(l.g, u1), u2);
+    } else if constexpr (kPhase == SlabPhase::kIsotropic) {
+      wo = sample_uniform_sphere(u1, u2);
+    } else {  // Lambert sphere, d'Eon 2021 Eq. 5: mu = sqrt((1 - u1)(1 - u2)) sin(2 pi u3) - sqrt(u1 u2)
+      const double u3 = r.uniform(i), u4 = r.uniform(i);
+      const double mu = std::sqrt((1 - u1) * (1 - u2)) * sincos_turn_unit(u3).sin - std::sqrt(u1 * u2);
+      wo = deflect(-wi, mu, u4);
+    }
+    const double u_roulette = r.uniform(i);
+    const double ev = st.event[i], order = in.order[i];
+    const double scatter = ev == kCollision ? (order >= cap ? 0.0 : 1.0) : 0.0;  // 1: a phase-function event
+    double wr = in.wr[i] * fr, wg = in.wg[i] * fg, wb = in.wb[i] * fb;
+    const double alive = valid * roulette(wr, wg, wb, order + 1, from, u_roulette);
+    const bool s = scatter > 0;
+    st.status[i] = ev != kCollision ? kScalar : scatter * alive > 0 ? kGoesOn : kEnded;
+    out.depth[i] = in.depth[i];
+    out.order[i] = order + scatter;
+    out.first_class[i] = order == 0 ? (s ? kClassVolume : in.first_class[i]) : in.first_class[i];
+    out.delta[i] = in.delta[i] * (1 - scatter);
+    out.wr[i] = s ? wr : in.wr[i], out.wg[i] = s ? wg : in.wg[i], out.wb[i] = s ? wb : in.wb[i];
+    out.dx[i] = s ? wo.x : in.dx[i], out.dy[i] = s ? wo.y : in.dy[i], out.dz[i] = s ? wo.z : in.dz[i];
+  }
+}
+
+template <SlabPhase kPhase>
+inline void scatter_phase(Lanes& L, bool from_b, int n, const Layer& l, int max_order, int roulette_from) {
+  if (from_b)
+    scatter_lanes<kPhase, true>(L, n, l, max_order, roulette_from);
+  else
+    scatter_lanes<kPhase, false>(L, n, l, max_order, roulette_from);
+}
+
+// (From paths b into a if from_b, else from a into b.)
+MCREF_WAVE_STAGE void scatter(Lanes& L, bool from_b, int n, const Layer& l, int max_order, int roulette_from) {
+  switch (l.phase) {
+    case SlabPhase::kSggxSurface:
+    case SlabPhase::kSggxFiber: scatter_phase<SlabPhase::kSggxSurface>(L, from_b, n, l, max_order, roulette_from); break;
+    case SlabPhase::kHenyeyGreenstein:
+      scatter_phase<SlabPhase::kHenyeyGreenstein>(L, from_b, n, l, max_order, roulette_from);
+      break;
+    case SlabPhase::kIsotropic: scatter_phase<SlabPhase::kIsotropic>(L, from_b, n, l, max_order, roulette_from); break;
+    case SlabPhase::kLambertSphere: scatter_phase<SlabPhase::kLambertSphere>(L, from_b, n, l, max_order, roulette_from); break;
+  }
+}
+
+// A lane whose flight left the layer (kScalar), as walk() does it: the tally
+// at the top, or at the bottom without a substrate; else a substrate bounce.
+// Returns the lane's new status.
+double leave_or_bounce(Paths& p, Streams& r, double ev, int i, const SlabMedium& medium,
+                             const WalkSettings& s, BrdfAccumulator& out) {
+  const Vec3 d{p.dx[i], p.dy[i], p.dz[i]};
+  const int order = static_cast<int>(p.order[i]), first_class = static_cast<int>(p.first_class[i]);
+  if (ev == kLost) return kEnded;
+  if (ev == kTop || !medium.has_substrate()) {
+    if (ev == kTop || order > 0 || s.delta_transmission) out.add(d, order, first_class, p.weight(i), p.delta[i] != 0);
+    return kEnded;
+  }
+  if (s.max_order > 0 && order >= s.max_order) return kEnded;
+  p.order[i] = order + 1;
+  if (order == 0) p.first_class[i] = kClassSubstrate;
+  const double u1 = r.uniform(i), u2 = r.uniform(i);
+  const SubstrateSample sc = sample_substrate(medium.substrate(), -d, u1, u2);
+  if (!sc.valid) return kEnded;
+  p.wr[i] *= sc.weight.r, p.wg[i] *= sc.weight.g, p.wb[i] *= sc.weight.b;
+  p.dx[i] = sc.wo.x, p.dy[i] = sc.wo.y, p.dz[i] = sc.wo.z;
+  p.delta[i] = p.delta[i] && sc.specular;
+  return roulette(p.wr[i], p.wg[i], p.wb[i], order + 1, s.roulette_from, r.uniform(i)) > 0 ? kGoesOn : kEnded;
+}
+
+}  // namespace
+
+std::string wave_walk_unsupported(const SlabGeometry& g) {
+  if (g.grid.openvdb) return "the wave walk takes backend = \"homogeneous\"";
+  if (g.layers.size() != 1) return "the wave walk takes one layer, not " + std::to_string(g.layers.size());
+  return "";
+}
+
+std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi, std::uint64_t count, Rng& rng,
+                        BrdfAccumulator& out) {
+  const SlabLayer& sl = medium.geometry().layers.front();
+  const Layer l{sl.phase, sl.thickness, sl.density, sl.g,
+                sl.is_sggx() ? (sl.phase == SlabPhase::kSggxSurface ? sggx::surface_like(sl.alpha, sl.orientation)
+                                                                  : sggx::fiber_like(sl.alpha, sl.orientation))
+                             : sggx::Sggx{},
+                sl.albedo, sl.f0};
+  const auto L = std::make_unique<Lanes>();
+  Streams& r = L->r;
+  Steps& st = L->st;
+  for (int i = 0; i < N; ++i) r.s0[i] = rng.next_u64(), r.s1[i] = rng.next_u64(), r.s2[i] = rng.next_u64(), r.s3[i] = rng.next_u64();
+  int n = static_cast<int>(std::min<std::uint64_t>(N, count));
+  bool in_b = false;  // the paths are in L->b (else L->a)
+  for (int i = 0; i < n; ++i) L->a.start(i, -wi);
+  std::uint64_t started = static_cast<std::uint64_t>(n), events = 0;
+  while (n > 0) {
+    fly(*L, in_b, n, l);
+    scatter(*L, in_b, n, l, s.max_order, s.roulette_from);
+    in_b = !in_b;
+    Paths& p = in_b ? L->b : L->a;
+    // Ended lanes take the next path, or the last lane (already handled: the
+    // loop runs downward) when none is left.
+    for (int i = n - 1; i >= 0; --i) {
+      double status = st.status[i];
+      if (status == kScalar) status = leave_or_bounce(p, r, st.event[i], i, medium, s, out);
+      if (status != kEnded) continue;
+      events += static_cast<std::uint64_t>(p.order[i]);
+      if (started < count) {
+        p.start(i, -wi);
+        ++started;
+      } else {
+        --n;
+        p.move(n, i);
+        r.move(n, i);
+      }
+    }
+  }
+  return events;
+}
+
+}  // namespace mcref::volume

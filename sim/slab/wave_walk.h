@@ -1,0 +1,34 @@
+#pragma once
+// The slab walk of sim/slab/walk.h, data-parallel (a wavefront walk): a chunk's
+// paths run kWaveLanes at a time in structure-of-arrays form, one scattering
+// event per lane and step. The free flight and the phase-function event of
+// every lane are each one loop the compiler vectorises (built for AVX-512,
+// AVX2 and baseline x86-64, chosen at run time, the same bits on each); the
+// substrate bounces, the tally and the refill of lanes whose path ended are
+// scalar. Same physics, settings and tally as walk(); its own random streams
+// (one xoshiro256** per lane, seeded from the chunk's generator), so tables
+// agree with walk()'s within statistics, and are bit-identical for any thread
+// count like walk()'s.
+//
+// Covers one homogeneous layer (any phase function: SGGX surface or fibre
+// flakes, Henyey-Greenstein, isotropic, Lambert sphere) over any substrate.
+#include <cstdint>
+#include <string>
+
+#include "sim/slab/medium.h"
+#include "sim/slab/walk.h"
+
+namespace mcref::volume {
+
+inline constexpr int kWaveLanes = 256;
+
+// "" if wave_walk() can run this medium, else why not.
+std::string wave_walk_unsupported(const SlabGeometry& geometry);
+
+// `count` paths entering the top face along -wi, tallied into `out` as
+// walk() does; the lanes' streams are seeded from `rng`. Returns the number
+// of scattering events.
+std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi, std::uint64_t count, Rng& rng,
+                        BrdfAccumulator& out);
+
+}  // namespace mcref::volume
