@@ -10,7 +10,18 @@ const std::vector<const ModelFamily*>& families() {
                                                  &slab_models(), &sphere_models()};
   return f;
 }
+thread_local CellsDone current_sink;
 }  // namespace
+
+CellProgressScope::CellProgressScope(CellsDone sink) : previous_(std::move(current_sink)) {
+  current_sink = std::move(sink);
+}
+CellProgressScope::~CellProgressScope() { current_sink = std::move(previous_); }
+
+CellsDone cell_progress() {
+  if (current_sink) return current_sink;
+  return [](std::size_t) {};
+}
 
 void for_each_cell(const Table& t, const std::function<void(std::size_t, const std::vector<std::size_t>&)>& fn) {
   std::vector<std::size_t> idx(t.axes.size(), 0);

@@ -35,6 +35,23 @@ struct ModelFamily {
   ModelStderrEvaluator evaluate_stderr = nullptr;
 };
 
+// Progress inside one model evaluation. The caller sets a sink for its own
+// thread (CellProgressScope); an evaluator that takes long reads it once at
+// entry, before going parallel, and reports the table cells it finishes.
+using CellsDone = std::function<void(std::size_t cells)>;
+class CellProgressScope {
+ public:
+  explicit CellProgressScope(CellsDone sink);
+  ~CellProgressScope();
+  CellProgressScope(const CellProgressScope&) = delete;
+  CellProgressScope& operator=(const CellProgressScope&) = delete;
+
+ private:
+  CellsDone previous_;
+};
+// The calling thread's sink (a no-op if none is set).
+CellsDone cell_progress();
+
 // Calls fn(flat index, multi-index) for every cell of a table, row-major.
 void for_each_cell(const Table& t, const std::function<void(std::size_t, const std::vector<std::size_t>&)>& fn);
 // Index of the axis called `name` (std::invalid_argument if none).

@@ -315,7 +315,8 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
     for (const Check& chk : checks)
       if (!f.find(chk.table)) throw std::runtime_error("table " + chk.table + " missing from " + cr.table_file);
     // The checks of a case are independent: evaluated in parallel, kept in order.
-    // Progress counts the cells of the finished checks.
+    // Progress counts table cells: those a long evaluator reports as it goes,
+    // and at the end of each check the rest of its table.
     double cells = 0;
     for (const Check& chk : checks) cells += static_cast<double>(f.find(chk.table)->cells());
     Progress progress("[" + std::to_string(k + 1) + "/" + std::to_string(suite.cases.size()) + "] " + c.name + " models",
@@ -325,9 +326,19 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
     tbb::parallel_for(std::size_t{0}, checks.size(), [&](std::size_t i) {
       // Isolated, so that a thread waiting inside one check (on a model's
       // cache lock, or for its nested parallel loops) never starts another.
-      tbb::this_task_arena::isolate([&] { cr.checks[i] = run_check(checks[i], *f.find(checks[i].table), ex, suite); });
-      const std::lock_guard<std::mutex> lock(progress_lock);
-      progress.advance(static_cast<double>(f.find(checks[i].table)->cells()));
+      const Table& table = *f.find(checks[i].table);
+      std::size_t reported = 0;  // cells of this check already counted
+      const auto count = [&](std::size_t n) {
+        const std::lock_guard<std::mutex> lock(progress_lock);
+        n = std::min(n, table.cells() - reported);
+        reported += n;
+        progress.advance(static_cast<double>(n));
+      };
+      {
+        const CellProgressScope scope(count);
+        tbb::this_task_arena::isolate([&] { cr.checks[i] = run_check(checks[i], table, ex, suite); });
+      }
+      count(table.cells());
     });
     progress.finish();
     for (const CheckResult& r : cr.checks) failures += r.verdict.status == "FAIL";

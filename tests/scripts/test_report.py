@@ -86,6 +86,23 @@ def test_summary_has_one_row_per_model(run_dir):
     assert per_check.count("<tr>") == 1 + sum(len(case["checks"]) for case in results(run_dir)["cases"])
 
 
+def test_relative_error_is_coloured_for_approximate_models_only(run_dir):
+    summary = page(run_dir).split('id="summary"')[1].split("<details")[0]
+    rows = re.findall(r"<tr><td title=\"[^\"]*\"><code>[^<]+</code></td><td>(exact|approximate)</td>(.*?)</tr>",
+                      summary, re.S)
+    kinds = {kind for kind, _ in rows}
+    assert kinds == {"exact", "approximate"}, kinds  # the tiny suite has both
+    coloured = 0
+    for kind, cells in rows:
+        style, text = re.findall(r'style="background: ([^"]*)">([^<]*)</td>', cells)[-1]
+        if kind == "exact" or text == "–":  # exact, or no relative error (all its checks n/a)
+            assert style == "", (kind, cells)
+        else:
+            assert style.startswith("hsl("), (kind, cells)
+            coloured += 1
+    assert coloured >= 1
+
+
 def test_every_plot_of_a_case_is_embedded_and_figure_plots_are_indexed(copy_of):
     plots = os.path.join(copy_of, "plots")
     first = sorted(os.listdir(plots))[0]

@@ -240,6 +240,7 @@ std::vector<double> evaluate_brdf(const Spec& s, const Table& t, const Experimen
   const MicroBrdf::Type grain = ex.materials.grain.type;
   const bool sharp = s.part != Spec::Part::Base &&
                      (grain == MicroBrdf::Type::Conductor || grain == MicroBrdf::Type::DiffuseSpecular);
+  const CellsDone done = cell_progress();  // read here: the tasks below run on other threads
   // One task per (theta_i, phi_i, theta_o) row of cells; each writes only its own cells.
   tbb::parallel_for(std::size_t{0}, ti.size() * pi.size() * to.size(), [&](std::size_t row) {
     const std::size_t a = row / (pi.size() * to.size()), b = row / to.size() % pi.size(), c = row % to.size();
@@ -261,6 +262,7 @@ std::vector<double> evaluate_brdf(const Spec& s, const Table& t, const Experimen
       }
       for (std::size_t k = 0; k < 3; ++k) out[t.index({a, b, c, d, k})] = num[k] / den;
     }
+    done(ph.size() * 3);
   });
   return out;
 }
@@ -271,6 +273,8 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
   const Axis &ti = t.axes[0], &pi = t.axes[1];
   const std::size_t total = t.axes[2].size() - 1, grain_component = 0, base = 1;  // order1_grain, order1_base
   const GaussLegendre gm(24), gp(24);
+  const CellsDone done = cell_progress();
+  const std::size_t cells_per_direction = t.cells() / (ti.size() * pi.size());
   // One task per incident direction; each writes only its own cells.
   tbb::parallel_for(std::size_t{0}, ti.size() * pi.size(), [&](std::size_t dir) {
     const std::size_t a = dir / pi.size(), b = dir % pi.size();
@@ -282,6 +286,7 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
         out[t.index({a, b, base, k})] = delta[k];
         out[t.index({a, b, total, k})] = delta[k];
       }
+      done(cells_per_direction);
       return;
     }
     // Energy of the grain part and of the base part (order-1 components of
@@ -309,6 +314,7 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
       out[t.index({a, b, base, k})] = e[1][k] + delta[k];
       out[t.index({a, b, total, k})] = e[0][k] + e[1][k] + delta[k];
     }
+    done(cells_per_direction);
   });
   return out;
 }
