@@ -9,7 +9,10 @@ namespace mcref {
 struct Comparison {
   std::size_t cells = 0;         // cells compared (finite sim, model and stderr > 0)
   double chi2 = 0;               // sum of z^2
-  double p_value = 1;            // chi-squared survival of chi2 with `cells` dof
+  // Chi-squared survival of each channel's sum of z^2 (its cells as dof), the
+  // smallest Bonferroni-corrected over the channels compared; one channel: of chi2.
+  double p_value = 1;
+  std::size_t channels = 0;      // channels with compared cells
   double max_abs_z = 0;
   std::size_t worst_cell = 0;    // flat index of max |z|
   double max_rel_error = 0;      // max |sim - model| / |model| over cells with signal
@@ -37,8 +40,16 @@ struct Comparison {
 // estimate; it is added in quadrature where the simulation has an error bar,
 // with Welch-Satterthwaite degrees of freedom (the model's own count taken as
 // infinite). Zero-variance cells are judged as without it.
+// `channels` > 1: the last axis holds that many colour channels (cell i is
+// channel i % channels). They are estimated from the same paths, so their z
+// are correlated (identical for a material whose channels differ only by a
+// factor, e.g. Lambertian grains at order 1); a chi2 over all of them would
+// count one deviation up to `channels` times. p_value then tests each channel
+// by its own chi2 and takes the smallest p times the channel count
+// (Bonferroni: valid whatever the correlation; issue #15).
 Comparison compare(const std::vector<double>& sim, const std::vector<double>& stderr_,
-                   const std::vector<double>& model, long long batches, const std::vector<double>& model_se = {});
+                   const std::vector<double>& model, long long batches, const std::vector<double>& model_se = {},
+                   std::size_t channels = 1);
 
 struct Verdict {
   std::string status;  // "pass", "FAIL", "measured" (approximate model, no tolerance)

@@ -5,6 +5,7 @@
 #include <initializer_list>
 #include <vector>
 
+#include "models/core/graded_quadrature.h"
 #include "models/core/quadrature.h"
 #include "models/microfacet/fresnel.h"
 #include "models/micrograin/ggx.h"
@@ -118,11 +119,12 @@ double gdist_base_delta_energy(const GrainField& f, const MicroSurface& base, Ve
   return base_visibility_union(f, i, mirror) * flat_delta_energy(base, i.z);
 }
 
-double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior, TwoWay masking) {
-  // Both integrals are split at their kinks and refined adaptively to about
-  // 1e-8 relative (issue #15, part 4): first a fixed 16-point rule per piece
-  // sets the scale, then integrate_adaptive meets kRel of it.
-  constexpr double kRel = 1e-8;
+double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior, TwoWay masking, double rel_tol) {
+  // Both integrals are split at their kinks and refined adaptively to rel_tol
+  // (issue #15, part 4): first a fixed 16-point rule per piece sets the scale,
+  // then the adaptive rule meets rel_tol of it; the polar pieces, whose ends
+  // behave like |theta' - theta'_c|^(3/2), are graded toward their ends.
+  const double kRel = rel_tol;
   static const GaussLegendre rule(16);
   const bool fresnel = ior > 1;
   // Ring integrand at azimuth a: <i.m>+ <o.m>+ T |M m'|, with |M m'| <d.m> = A + B cos a + C sin a
@@ -175,7 +177,8 @@ double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior, T
     if (cuts[c + 1] - cuts[c] > 1e-12) coarse += std::fabs(rule.integrate(polar, cuts[c], cuts[c + 1]));
   double sum = 0;
   for (std::size_t c = 0; c + 1 < cuts.size(); ++c)
-    if (cuts[c + 1] - cuts[c] > 1e-12) sum += integrate_adaptive(polar, cuts[c], cuts[c + 1], kRel * coarse / 3 + 1e-300);
+    if (cuts[c + 1] - cuts[c] > 1e-12)
+      sum += integrate_adaptive_graded(polar, cuts[c], cuts[c + 1], kRel * coarse / 3 + 1e-300);
   return f.tau0 * sum / (kPi * i.z * o.z);
 }
 

@@ -84,7 +84,10 @@ double gdist_specular_geometry(const GrainField& f, Vec3 i, Vec3 o, TwoWay maski
 bool has_specular_lobe(const MicroSurface& grain);
 // Its diffuse geometry factor (1/pi) tau0 / (|i.n||o.n|) ∫ D <i.m><o.m> T_i T_o G dm,
 // T = 1 - F_dielectric(ior) of the local angle (ior <= 1: T = 1, Lambertian).
-double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior, TwoWay masking = TwoWay::Product);
+// rel_tol: the quadratures' relative tolerance (their error is far below it,
+// within 1e-6 at the default: tests/models/test_micrograin_gdist.cpp).
+double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior, TwoWay masking = TwoWay::Product,
+                              double rel_tol = 1e-8);
 
 // vNDF paper Eq. 1, base term V_p(i, o) f_B with V_p = P(base point in a pore, seen
 // from i and o): (1 - tau0) V(i) V(o) (= lrpb23_base_part) or the union form.

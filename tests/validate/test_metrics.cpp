@@ -156,3 +156,49 @@ TEST(Metrics, IdenticallyZeroIsNotApplicable) {
   EXPECT_FALSE(compare({0.0, nan, 0.0, 0.0}, {0.0, nan, 0.0, 0.0}, zeros, 32).identically_zero);
   EXPECT_FALSE(compare(zeros, zeros, {0.0, 0.0, std::numeric_limits<double>::infinity(), 0.0}, 32).identically_zero);
 }
+
+// Issue #15: the RGB channels of a table come from the same paths; for
+// Lambertian grains at order 1 they differ only by the albedo, so their z are
+// identical and a chi2 over all cells counts each deviation three times (its
+// variance triples). Seed 5, 2000 replications of an exact model on 200 cells x
+// 3 such channels (normal noise, 10^7 batches), alpha = 0.01: one chi2 over the
+// 600 cells rejects the true model in about 9 % of the replications (P(3 X > the
+// 1 % point of chi2(600)), X ~ chi2(200)); the per-channel chi2 with Bonferroni
+// in at most alpha (here alpha / 3: the three p are equal). A 5 % scaled model
+// (z ~ -1 per cell with 5 % errors) still fails.
+TEST(Metrics, CorrelatedChannelsAreTestedOneByOne) {
+  Rng rng(5);
+  auto normal = [&] { return std::sqrt(-2 * std::log1p(-rng.uniform())) * std::cos(2 * kPi * rng.uniform()); };
+  const double albedo[3] = {0.18, 0.67, 0.42}, alpha = 0.01;
+  const std::size_t rows = 200, reps = 2000;
+  std::size_t pooled_rejections = 0, channel_rejections = 0;
+  std::vector<double> sim(3 * rows), se(3 * rows), model(3 * rows), scaled(3 * rows);
+  for (std::size_t r = 0; r < reps; ++r) {
+    for (std::size_t k = 0; k < rows; ++k) {
+      const double e = normal();
+      for (int ch = 0; ch < 3; ++ch) {
+        model[3 * k + ch] = albedo[ch];
+        scaled[3 * k + ch] = 1.05 * albedo[ch];
+        sim[3 * k + ch] = albedo[ch] * (1 + 0.05 * e);
+        se[3 * k + ch] = albedo[ch] * 0.05;
+      }
+    }
+    const Comparison pooled = compare(sim, se, model, 10000000), split = compare(sim, se, model, 10000000, {}, 3);
+    EXPECT_EQ(split.channels, 3u);
+    EXPECT_EQ(split.chi2, pooled.chi2);
+    pooled_rejections += pooled.p_value < alpha;
+    channel_rejections += split.p_value < alpha;
+    if (r == 0) EXPECT_EQ(judge(compare(sim, se, scaled, 10000000, {}, 3), true, alpha, 0).status, "FAIL");
+  }
+  // Binomial: pooled ~ 9 % +- 0.6 %; split <= 1 % (sd 0.22 % at 1 %).
+  EXPECT_GT(pooled_rejections, reps * 6 / 100) << pooled_rejections;
+  EXPECT_LE(channel_rejections, reps * 15 / 1000) << channel_rejections;
+}
+
+// One channel: the per-channel p is the pooled chi2's p.
+TEST(Metrics, SingleChannelPValueIsThePooledOne) {
+  const std::vector<double> sim{1.1, 2.0, 2.9}, se{0.1, 0.1, 0.1}, model{1.0, 2.0, 3.0};
+  const Comparison c = compare(sim, se, model, 10000000);
+  EXPECT_EQ(c.channels, 1u);
+  EXPECT_NEAR(c.p_value, chi2_survival(c.chi2, 3), 1e-15);
+}

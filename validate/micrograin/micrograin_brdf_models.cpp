@@ -13,6 +13,7 @@
 #include "models/core/quadrature.h"
 #include "models/micrograin/micrograin_bsdf.h"
 #include "sim/tally/brdf_tally.h"
+#include "validate/micrograin/geometry_memo.h"
 #include "validate/micrograin/simulated_pore_base.h"
 #include "validate/model_evaluation.h"
 
@@ -141,7 +142,8 @@ std::vector<ModelInfo> model_list() {
 // (the part whose peak a coarse cell rule can miss; issue #15, part 5).
 void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 i, Vec3 o, double out[3],
             bool sharp_only = false) {
-  // The G_dist diffuse and specular geometries are channel-independent: computed once.
+  // The G_dist diffuse and specular geometries are channel-independent: computed once
+  // (the diffuse one once for all models of a table: geometry_memo.h).
   double geometry = -1, specular_geometry = -1;
   auto specular = [&](const mg::MicroSurface& g) {
     if (!mg::has_specular_lobe(g)) return 0.0;
@@ -166,7 +168,7 @@ void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& m
         v += mg::lrpb23_grain_part(f, g, i, o, s.lambda, s.g2);
       } else if (g.type == mg::MicroSurface::Type::Lambertian || g.type == mg::MicroSurface::Type::DiffuseSpecular) {
         const bool lambert = g.type == mg::MicroSurface::Type::Lambertian;
-        if (geometry < 0) geometry = mg::gdist_diffuse_geometry(f, i, o, lambert ? 0.0 : g.ior, s.masking);
+        if (geometry < 0) geometry = memo_diffuse_geometry(f, i, o, lambert ? 0.0 : g.ior, s.masking);
         if (lambert) {
           v += g.kd * geometry;
         } else {
