@@ -53,8 +53,9 @@ std::vector<ModelInfo> geometry_model_list() {
       {"vndf_eq13", "vndf", true, "visible NDF with height-correlated masking (vNDF paper Eq. 6/11-13)"},
       {"vndf_sampler", "vndf", false,
        "histogram of the vNDF sampler (vNDF paper Sec. 4, Listings 1-4; theta by the tabulated sigma^-1, phi by "
-       "the triangle cut of the tent of Eq. 28-31), 2e6 samples per incident direction, binned and folded as the simulation: the "
-       "paper's Fig. 5 check (approximate: 1024 x 1024 table; its own multinomial noise enters z)"},
+       "the triangle cut of the tent of Eq. 28-31), 2e6 samples per incident direction, binned and folded as the simulation "
+       "(approximate: 1024 x 1024 table; its own multinomial noise enters z; Fig. 5's phi histogram is the "
+       "phi_conditional case)"},
   };
   for (ModelInfo& m : models) m.kind = "micrograin";
   return models;
