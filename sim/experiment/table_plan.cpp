@@ -35,6 +35,8 @@ MeasureSize measure_size(const Measure& m, const Experiment& ex) {
   if (q == "g1") return {dirs * (1 + normals), 2 + 2 * normals};
   if (q == "vndf") return {dirs * normals, normals + 1};
   if (q == "phase") return {double(m.mu_bins), m.mu_bins + 1.0};
+  if (q == "phi_conditional")
+    return {count(m.theta_i.size()) * count(m.theta_m.size()) * m.phi_bins, double(m.phi_bins)};
   if (q == "pore_visibility") {
     const double cells = count(m.theta_i.size()) * count(m.theta_o.size()) * count(m.phi.size());
     return {2 * cells, 1 + count(m.theta_i.size()) + count(m.theta_o.size()) + cells};
@@ -60,6 +62,7 @@ std::string size_keys(const Measure& m, std::size_t index) {
   else if (q == "ndf") keys = {"theta_m_bins", "phi_m_bins"};
   else if (q == "phase") keys = {"mu_bins"};
   else if (q == "pore_visibility") keys = {"theta_i_deg", "theta_o_deg", "phi_deg"};
+  else if (q == "phi_conditional") keys = {"theta_i_deg", "theta_m_deg", "phi_bins"};
   else if (q == "brdf") keys = {"theta_i_deg", "phi_i_deg", "theta_o_bins", "phi_bins"};
   else if (q == "tau_height") keys = {"theta_i_deg", "phi_i_deg", "h_points"};
   else if (q == "g1" || q == "vndf") keys = {"theta_i_deg", "phi_i_deg", "theta_m_bins", "phi_m_bins"};
