@@ -35,6 +35,12 @@ inline Vec3 uniform_top_origin(const MicrograinField& f, Rng& rng) {
   return {rng.uniform() * f.unit_side_x(), rng.uniform() * f.unit_side_y(), 1.0};
 }
 
+// n such origins, drawn in order (two uniforms each) into `out`.
+inline void uniform_top_origins(const MicrograinField& f, Rng& rng, std::size_t n, std::vector<Vec3>& out) {
+  out.resize(n);
+  for (Vec3& o : out) o = uniform_top_origin(f, rng);
+}
+
 // Axes shared by the estimators.
 Axis theta_points(const std::string& name, const std::vector<double>& v);
 Axis phi_points(const std::string& name, const std::vector<double>& v);

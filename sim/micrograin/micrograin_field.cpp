@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <stdexcept>
 
 #include "models/core/rng.h"
+#include "sim/micrograin/packet_order.h"
 #include "sim/micrograin/ray_log.h"
 
 namespace mcref {
@@ -343,6 +345,63 @@ Hit MicrograinField::finish(const TraceSegment& first) const {
     s = &next;
   }
   return Hit{};  // escape
+}
+
+void MicrograinField::first_hits_unit(const Vec3* origins, std::size_t n, Vec3 d, Hit::Kind* kinds,
+                                      Vec3* normals) const {
+  if (normals)
+    trace_packets<true>(origins, n, d, kinds, normals);
+  else
+    trace_packets<false>(origins, n, d, kinds, nullptr);
+}
+
+template <bool kDetail>
+void MicrograinField::trace_packets(const Vec3* origins, std::size_t n, Vec3 d, Hit::Kind* kinds,
+                                    Vec3* normals) const {
+  constexpr int kLanes = 16;
+  thread_local std::vector<std::uint32_t> order, scratch;
+  thread_local std::vector<Vec3> sorted;
+  packet_order(origins, n, side_x_, side_y_, 4, order, sorted, scratch);
+  const double a = dot(d, d), inv_a = 1 / a;
+  TraceSegment s[kLanes];  // (built in place: a copy reads back stores in pieces, see TraceSegment)
+  alignas(64) RTCRayHit16 rh;
+  alignas(64) int valid[kLanes];
+  for (std::size_t i = 0; i < n; i += kLanes) {
+    const int m = static_cast<int>(std::min<std::size_t>(kLanes, n - i));
+    for (int k = 0; k < kLanes; ++k) {
+      valid[k] = 0;
+      if (k >= m) continue;
+      ::new (&s[k]) TraceSegment(segment(wrap_unit(sorted[i + k]), d, a, inv_a, kNoGrain, 0, 0.0));
+      if (s[k].escape) continue;
+      valid[k] = -1;
+      const RTCRay& r = s[k].rh.ray;
+      rh.ray.org_x[k] = r.org_x;
+      rh.ray.org_y[k] = r.org_y;
+      rh.ray.org_z[k] = r.org_z;
+      rh.ray.dir_x[k] = r.dir_x;
+      rh.ray.dir_y[k] = r.dir_y;
+      rh.ray.dir_z[k] = r.dir_z;
+      rh.ray.tnear[k] = r.tnear;
+      rh.ray.tfar[k] = r.tfar;
+      rh.ray.time[k] = 0;
+      rh.ray.mask[k] = 0xFFFFFFFFu;
+      rh.ray.id[k] = 0;
+      rh.ray.flags[k] = 0;
+      rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcIntersect16(valid, scene_, &context, &rh);
+    for (int k = 0; k < m; ++k) {
+      s[k].rh.ray.tfar = rh.ray.tfar[k];
+      s[k].rh.hit.geomID = rh.hit.geomID[k];
+      s[k].rh.hit.primID = rh.hit.primID[k];
+      const Hit h = finish<kDetail>(s[k]);
+      kinds[order[i + k]] = h.kind;
+      if constexpr (kDetail) normals[order[i + k]] = h.normal;
+    }
+  }
 }
 
 // Visits the grains within unit-space distance `reach` of (x, y), periodic,

@@ -70,6 +70,12 @@ class MicrograinField {
   Hit intersect_unit(Vec3 unit_origin, Vec3 unit_direction, std::uint32_t start_grain) const;
   // Only the kind of the first hit (cheaper: no normal or position).
   Hit::Kind first_hit_kind_unit(Vec3 unit_origin, Vec3 unit_direction) const;
+  // First hits of rays from many unit-space origins along one unit-space
+  // direction d (not from a grain), the same as first_hit_kind_unit and
+  // intersect_unit one by one: kinds[k] and, if `normals` is given, the real-space
+  // normal normals[k] of origin k. Traced in packets of 16 nearby origins
+  // (rtcIntersect16 on rays sorted by packet_order; any later segment one by one).
+  void first_hits_unit(const Vec3* origins, std::size_t n, Vec3 d, Hit::Kind* kinds, Vec3* normals = nullptr) const;
   // True if a ray from a unit-space point meets a grain or the base before
   // leaving the grain layer. `start_grain` is the grain the point lies on
   // (kNoGrain for a point on the base), so that it is not hit again.
@@ -135,6 +141,8 @@ class MicrograinField {
   // (calls Embree again after a spurious hit and across the tile's sides).
   template <bool kDetail>
   Hit finish(const TraceSegment& s) const;
+  template <bool kDetail>
+  void trace_packets(const Vec3* origins, std::size_t n, Vec3 d, Hit::Kind* kinds, Vec3* normals) const;
 
   MicrograinGeometry geometry_;
   double rx_, ry_, c_, inv_rx_, inv_ry_, inv_c_;

@@ -4,6 +4,7 @@
 // The stored value is the cosine-weighted bin average of D:
 // P(m in bin | grain hit) / integral over the bin of cos(theta_m).
 #include "sim/micrograin/estimator.h"
+#include "sim/tally/polar_bins.h"
 
 namespace mcref {
 
@@ -21,13 +22,20 @@ Estimator ndf_estimator() {
     const Axis& ph = tables[0].axes[1];
     const std::size_t cells = th.size() * ph.size();
     const Vec3 down = unit_direction(f, {0, 0, -1});
+    const PolarBins theta_m(th);  // th.find_bin(spherical_theta(normal)), without acos
     const Sums acc = run_chunks(m.samples, cells + 1, key.with(0), [&](Rng& rng, std::uint64_t n, Sums& s) {
+      // The chunk's rays, traced in packets (scratch kept per thread).
+      thread_local std::vector<Vec3> origins, normals;
+      thread_local std::vector<Hit::Kind> kinds;
+      uniform_top_origins(f, rng, n, origins);
+      kinds.resize(n);
+      normals.resize(n);
+      f.first_hits_unit(origins.data(), n, down, kinds.data(), normals.data());
       for (std::uint64_t k = 0; k < n; ++k) {
-        const Hit h = f.intersect_unit(uniform_top_origin(f, rng), down);
-        if (h.kind != Hit::Kind::Grain) continue;
+        if (kinds[k] != Hit::Kind::Grain) continue;
         s[cells] += 1;
-        const int a = th.find_bin(spherical_theta(h.normal));
-        const int b = ph.size() == 1 ? 0 : ph.find_bin(spherical_phi(h.normal));
+        const int a = theta_m.bin(normals[k].z);
+        const int b = ph.size() == 1 ? 0 : ph.find_bin(spherical_phi(normals[k]));
         if (a >= 0 && b >= 0) s[a * ph.size() + b] += 1;
       }
     });

@@ -19,8 +19,15 @@ Estimator tau_plus_estimator() {
       for (double phi : m.phi_i) {
         const Vec3 d = -unit_direction(f, incident_direction(theta, phi));
         const Sums acc = run_chunks(m.samples, 1, key.with(dir++), [&](Rng& rng, std::uint64_t n, Sums& s) {
-          for (std::uint64_t k = 0; k < n; ++k)
-            if (f.first_hit_kind_unit(uniform_top_origin(f, rng), d) == Hit::Kind::Grain) s[0] += 1;
+          // The chunk's rays, traced in packets (scratch kept per thread).
+          thread_local std::vector<Vec3> origins;
+          thread_local std::vector<Hit::Kind> kinds;
+          uniform_top_origins(f, rng, n, origins);
+          kinds.resize(n);
+          f.first_hits_unit(origins.data(), n, d, kinds.data());
+          std::uint64_t grains = 0;
+          for (Hit::Kind k : kinds) grains += k == Hit::Kind::Grain;
+          s[0] += static_cast<double>(grains);
         });
         est.push_back(acc[0] / static_cast<double>(m.samples));
       }
