@@ -355,8 +355,11 @@ void MicrograinField::first_hits_unit(const Vec3* origins, std::size_t n, Vec3 d
     trace_packets<false>(origins, n, d, kinds, nullptr);
 }
 
+// Flattened: finish and make_hit inlined here (not in the single-ray trace,
+// whose code layout the walk is tuned to), so that the fields of the Hit that
+// are not kept are not computed.
 template <bool kDetail>
-void MicrograinField::trace_packets(const Vec3* origins, std::size_t n, Vec3 d, Hit::Kind* kinds,
+[[gnu::flatten]] void MicrograinField::trace_packets(const Vec3* origins, std::size_t n, Vec3 d, Hit::Kind* kinds,
                                     Vec3* normals) const {
   constexpr int kLanes = 16;
   thread_local std::vector<std::uint32_t> order, scratch;

@@ -142,7 +142,7 @@ class MicrograinField {
   template <bool kDetail>
   Hit finish(const TraceSegment& s) const;
   template <bool kDetail>
-  void trace_packets(const Vec3* origins, std::size_t n, Vec3 d, Hit::Kind* kinds, Vec3* normals) const;
+  [[gnu::flatten]] void trace_packets(const Vec3* origins, std::size_t n, Vec3 d, Hit::Kind* kinds, Vec3* normals) const;
 
   MicrograinGeometry geometry_;
   double rx_, ry_, c_, inv_rx_, inv_ry_, inv_c_;

@@ -40,10 +40,10 @@ PolarBins::PolarBins(const Axis& theta) : edges_(static_cast<int>(theta.values.s
     w_.push_back(double_of(lo));
   }
   // First guesses: the count at the start of each cell of sqrt(1 - z).
-  const int cells = 4 * edges_;
-  scale_ = cells / std::sqrt(2.0);
-  for (int k = 0; k <= cells + 1; ++k) {
-    const double s = k / scale_, z = 1 - s * s;
+  cells_ = 4 * edges_;
+  scale_ = static_cast<float>(cells_ / std::sqrt(2.0));
+  for (int k = 0; k <= cells_; ++k) {
+    const double s = k / static_cast<double>(scale_), z = 1 - s * s;
     int c = 0;
     while (c < edges_ && z <= w_[c]) ++c;
     guess_.push_back(c);

@@ -5,6 +5,7 @@
 // edges' thresholds correct it. The thresholds are the doubles at which
 // axis.find_bin(spherical_theta) changes, found once by bisection over the
 // doubles, so the bin is exactly the one of glibc's acos (which is monotone).
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -20,8 +21,8 @@ class PolarBins {
   // == theta.find_bin(spherical_theta({0, 0, z})): the bin, or -1 outside the axis.
   int bin(double z) const {
     z = std::fmin(1.0, std::fmax(-1.0, z));  // as spherical_theta (NaN -> -1)
-    const double s = std::sqrt(1 - z);      // in [0, sqrt 2]
-    int c = guess_[static_cast<int>(s * scale_)];
+    const float s = std::sqrt(static_cast<float>(1 - z));  // in [0, sqrt 2]; a guess only
+    int c = guess_[std::min(static_cast<int>(s * scale_), cells_)];
     // c := the number of edges e_j with theta >= e_j, i.e. of thresholds z <= w_j.
     while (c > 0 && z > w_[c - 1]) --c;
     while (c < edges_ && z <= w_[c]) ++c;
@@ -31,7 +32,8 @@ class PolarBins {
  private:
   int edges_;               // edges of the axis (bins + 1)
   std::vector<double> w_;   // w_j: the largest z with acos(z) >= e_j (decreasing in j)
-  double scale_;            // table cells per unit of sqrt(1 - z)
+  float scale_;             // table cells per unit of sqrt(1 - z)
+  int cells_;               // cells up to sqrt 2
   std::vector<int> guess_;  // the count at the start of each cell (plus one cell past sqrt 2)
 };
 
