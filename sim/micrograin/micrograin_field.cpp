@@ -364,7 +364,7 @@ template <bool kDetail>
   constexpr int kLanes = 16;
   thread_local std::vector<std::uint32_t> order, scratch;
   thread_local std::vector<Vec3> sorted;
-  packet_order(origins, n, side_x_, side_y_, 4, order, sorted, scratch);
+  packet_order(origins, n, side_x_, side_y_, kPacketOriginsPerCell, order, sorted, scratch);
   const double a = dot(d, d), inv_a = 1 / a;
   TraceSegment s[kLanes];  // (built in place: a copy reads back stores in pieces, see TraceSegment)
   alignas(64) RTCRayHit16 rh;

@@ -27,17 +27,25 @@ Estimator ndf_estimator() {
       // The chunk's rays, traced in packets (scratch kept per thread).
       thread_local std::vector<Vec3> origins, normals;
       thread_local std::vector<Hit::Kind> kinds;
+      thread_local std::vector<std::uint32_t> count;  // per cell, then one for the rays not counted
       uniform_top_origins(f, rng, n, origins);
       kinds.resize(n);
       normals.resize(n);
       f.first_hits_unit(origins.data(), n, down, kinds.data(), normals.data());
+      count.assign(cells + 1, 0);
+      std::uint32_t grains = 0;
+      // Without branches on the (random) kind: a ray off the grains counts in count[cells].
       for (std::uint64_t k = 0; k < n; ++k) {
-        if (kinds[k] != Hit::Kind::Grain) continue;
-        s[cells] += 1;
+        const bool grain = kinds[k] == Hit::Kind::Grain;
+        grains += grain;
         const int a = theta_m.bin(normals[k].z);
-        const int b = ph.size() == 1 ? 0 : ph.find_bin(spherical_phi(normals[k]));
-        if (a >= 0 && b >= 0) s[a * ph.size() + b] += 1;
+        int b = 0;
+        if (ph.size() > 1 && grain) b = ph.find_bin(spherical_phi(normals[k]));
+        const bool in = grain & (a >= 0) & (b >= 0);
+        ++count[in ? a * ph.size() + b : cells];
       }
+      s[cells] += grains;
+      for (std::size_t c = 0; c < cells; ++c) s[c] += count[c];
     });
     std::vector<double> est(cells, 0.0);
     const double grain_hits = acc[cells];

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 namespace mcref {
 
@@ -22,6 +23,7 @@ double double_of(std::int64_t k) {
 
 PolarBins::PolarBins(const Axis& theta) : edges_(static_cast<int>(theta.values.size())) {
   // w_j by bisection over the doubles of [-1, 1]: theta >= e_j holds at lo, not at hi.
+  w_.push_back(std::numeric_limits<double>::infinity());
   for (double e : theta.values) {
     auto at_or_past = [&](double z) { return spherical_theta({0, 0, z}) >= e; };
     if (!at_or_past(-1)) {
@@ -39,13 +41,15 @@ PolarBins::PolarBins(const Axis& theta) : edges_(static_cast<int>(theta.values.s
     }
     w_.push_back(double_of(lo));
   }
-  // First guesses: the count at the start of each cell of sqrt(1 - z).
-  cells_ = 4 * edges_;
+  w_.push_back(-std::numeric_limits<double>::infinity());
+  // First guesses: the count at the start of each cell of sqrt(1 - z), 16
+  // cells per edge, so that few guesses need a correction.
+  cells_ = 16 * edges_;
   scale_ = static_cast<float>(cells_ / std::sqrt(2.0));
   for (int k = 0; k <= cells_; ++k) {
     const double s = k / static_cast<double>(scale_), z = 1 - s * s;
     int c = 0;
-    while (c < edges_ && z <= w_[c]) ++c;
+    while (z <= w_[c + 1]) ++c;
     guess_.push_back(c);
   }
 }

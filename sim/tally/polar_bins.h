@@ -24,17 +24,19 @@ class PolarBins {
     const float s = std::sqrt(static_cast<float>(1 - z));  // in [0, sqrt 2]; a guess only
     int c = guess_[std::min(static_cast<int>(s * scale_), cells_)];
     // c := the number of edges e_j with theta >= e_j, i.e. of thresholds z <= w_j.
-    while (c > 0 && z > w_[c - 1]) --c;
-    while (c < edges_ && z <= w_[c]) ++c;
+    while (z > w_[c]) --c;
+    while (z <= w_[c + 1]) ++c;
     return c >= 1 && c < edges_ ? c - 1 : -1;
   }
 
  private:
   int edges_;               // edges of the axis (bins + 1)
-  std::vector<double> w_;   // w_j: the largest z with acos(z) >= e_j (decreasing in j)
+  // w_[j + 1]: the largest z with acos(z) >= e_j (decreasing in j), between
+  // the sentinels w_[0] = +inf and w_[edges + 1] = -inf.
+  std::vector<double> w_;
   float scale_;             // table cells per unit of sqrt(1 - z)
   int cells_;               // cells up to sqrt 2
-  std::vector<int> guess_;  // the count at the start of each cell (plus one cell past sqrt 2)
+  std::vector<int> guess_;  // the count at the start of each cell, cells_ + 1 of them
 };
 
 }  // namespace mcref

@@ -9,12 +9,18 @@
 //      <q>/trace     : run_chunks + uniform_top_origin + intersect_unit only
 //      <q>/bare      : run_chunks + uniform_top_origin + rtcIntersect1 with
 //                      tfar to the base plane, no wrapping
-//    All three draw the same origins: the chunk seeds are those add_batch uses
+//      <q>/packets   : run_chunks + uniform_top_origins + packet_order +
+//                      rtcIntersect16 on the same rays in the estimator's
+//                      packets (tfar to the base plane, no wrapping)
+//    All four draw the same origins: the chunk seeds are those add_batch uses
 //    (StreamKey::with(0), then stream_seed({.., chunk})), and the direction is
 //    the estimator's (-unit_direction(i), or unit_direction(-z) for ndf).
-//      pair/<q>/...  : estimator and bare batches alternated back to back in
-//                      every iteration (robust to load from other processes);
-//                      sets the "ratio" counter = estimator rays/s / bare rays/s.
+//      pair/<q>/...  : estimator, bare and packets batches back to back in
+//                      every iteration, the order rotating (robust to load
+//                      from other processes); counters "ratio" = estimator
+//                      rays/s / bare rays/s (the target) and "packet_ratio" =
+//                      estimator / packets, of wall time; "cpu_ratio" and
+//                      "cpu_packet_ratio" the same of the process's CPU time.
 // 2. Build time and resident-memory increase of a 10^6-grain field
 //    (tau0 = 0.5, beta = 1, tile chosen so the expected count is 10^6).
 // 3. Rays/s of tau_plus (estimator, trace, bare, pair) and g1 on that field
@@ -36,11 +42,13 @@
 #include <vector>
 
 #include <malloc.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "models/core/vec.h"
 #include "sim/micrograin/estimator.h"
 #include "sim/micrograin/micrograin_field.h"
+#include "sim/micrograin/packet_order.h"
 
 namespace {
 
@@ -103,8 +111,10 @@ bool reset_peak_rss() {
 
 // ---- the three ray paths --------------------------------------------------
 
-enum class Path { Estimator, Trace, Bare };
-const char* path_name(Path p) { return p == Path::Estimator ? "estimator" : p == Path::Trace ? "trace" : "bare"; }
+enum class Path { Estimator, Trace, Bare, Packets };
+const char* path_name(Path p) {
+  return p == Path::Estimator ? "estimator" : p == Path::Trace ? "trace" : p == Path::Bare ? "bare" : "packets";
+}
 
 Measure make_measure(const std::string& quantity, double theta_deg, std::uint64_t samples) {
   Measure m;
@@ -162,6 +172,41 @@ double run_batch(Path path, const MicrograinField& f, const std::string& quantit
   }
   RTCScene scene = f.embree_scene();
   const float tfar = static_cast<float>(-1.0 / d.z);  // origins at z = 1, base plane at z = 0
+  if (path == Path::Packets) {
+    const Sums s = run_chunks(samples, 1, kKey.with(0), [&](Rng& rng, std::uint64_t n, Sums& acc) {
+      thread_local std::vector<Vec3> origins, sorted;
+      thread_local std::vector<std::uint32_t> order, cells;
+      uniform_top_origins(f, rng, n, origins);
+      packet_order(origins.data(), n, f.unit_side_x(), f.unit_side_y(), kPacketOriginsPerCell, order, sorted, cells);
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      alignas(64) RTCRayHit16 rh;
+      alignas(64) int valid[16];
+      for (std::uint64_t i = 0; i < n; i += 16) {
+        for (std::uint64_t k = 0; k < 16; ++k) {
+          valid[k] = i + k < n ? -1 : 0;
+          if (i + k >= n) continue;
+          const Vec3& o = sorted[i + k];
+          rh.ray.org_x[k] = static_cast<float>(o.x);
+          rh.ray.org_y[k] = static_cast<float>(o.y);
+          rh.ray.org_z[k] = static_cast<float>(o.z);
+          rh.ray.dir_x[k] = static_cast<float>(d.x);
+          rh.ray.dir_y[k] = static_cast<float>(d.y);
+          rh.ray.dir_z[k] = static_cast<float>(d.z);
+          rh.ray.tnear[k] = 0.0f;
+          rh.ray.tfar[k] = tfar;
+          rh.ray.mask[k] = 0xFFFFFFFFu;
+          rh.ray.flags[k] = 0;
+          rh.ray.time[k] = 0;
+          rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+          rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect16(valid, scene, &context, &rh);
+        for (std::uint64_t k = 0; k < 16 && i + k < n; ++k) acc[0] += rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+      }
+    });
+    return s[0];
+  }
   const Sums s = run_chunks(samples, 1, kKey.with(0), [&](Rng& rng, std::uint64_t n, Sums& acc) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -208,32 +253,47 @@ void bm_rays(benchmark::State& state, FieldFn field_fn, std::string quantity, Pa
   state.counters["grains"] = static_cast<double>(f.grain_count());
 }
 
-// Estimator and bare alternated in every iteration; the ratio is of the summed times.
+// CPU time of the whole process (all threads), in seconds.
+double process_cpu_seconds() {
+  rusage u;
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// Estimator, bare and packets in every iteration, the order rotating; the
+// ratios are of the summed times.
 void bm_pair(benchmark::State& state, FieldFn field_fn, std::string quantity, double theta_deg, int threads,
              std::uint64_t samples) {
   const MicrograinField& f = field_fn();
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   using clock = std::chrono::steady_clock;
-  double t_est = 0, t_bare = 0, h_est = 0, h_bare = 0;
-  bool est_first = true;
+  const Path paths[3] = {Path::Estimator, Path::Bare, Path::Packets};
+  double wall[3] = {0, 0, 0}, cpu[3] = {0, 0, 0}, hits[3] = {0, 0, 0};
+  int first = 0;
   for (auto _ : state) {
-    for (int k = 0; k < 2; ++k) {
-      const bool est = (k == 0) == est_first;
+    for (int k = 0; k < 3; ++k) {
+      const int p = (first + k) % 3;
       const auto t0 = clock::now();
-      const double h = run_batch(est ? Path::Estimator : Path::Bare, f, quantity, theta_deg, samples);
-      const double dt = std::chrono::duration<double>(clock::now() - t0).count();
-      (est ? t_est : t_bare) += dt;
-      (est ? h_est : h_bare) += h;
+      const double c0 = process_cpu_seconds();
+      hits[p] += run_batch(paths[p], f, quantity, theta_deg, samples);
+      cpu[p] += process_cpu_seconds() - c0;
+      wall[p] += std::chrono::duration<double>(clock::now() - t0).count();
     }
-    est_first = !est_first;
+    first = (first + 1) % 3;
   }
   const double rays = static_cast<double>(samples) * static_cast<double>(state.iterations());
-  state.counters["est_rays/s"] = rays / t_est;
-  state.counters["bare_rays/s"] = rays / t_bare;
-  state.counters["ratio"] = t_bare / t_est;
+  state.counters["est_rays/s"] = rays / wall[0];
+  state.counters["bare_rays/s"] = rays / wall[1];
+  state.counters["packet_rays/s"] = rays / wall[2];
+  state.counters["ratio"] = wall[1] / wall[0];
+  state.counters["packet_ratio"] = wall[2] / wall[0];
+  state.counters["cpu_ratio"] = cpu[1] / cpu[0];
+  state.counters["cpu_packet_ratio"] = cpu[2] / cpu[0];
   if (quantity == "tau_plus") {
-    state.counters["est_hit_frac"] = h_est / rays;
-    state.counters["bare_hit_frac"] = h_bare / rays;
+    state.counters["est_hit_frac"] = hits[0] / rays;
+    state.counters["bare_hit_frac"] = hits[1] / rays;
+    state.counters["packet_hit_frac"] = hits[2] / rays;
   }
 }
 
@@ -324,7 +384,7 @@ int main(int argc, char** argv) {
   // 1. Realistic field: estimator, trace, bare; then the back-to-back pairs.
   for (const Case& c : item1)
     for (int t : thread_counts)
-      for (Path p : {Path::Estimator, Path::Trace, Path::Bare})
+      for (Path p : {Path::Estimator, Path::Trace, Path::Bare, Path::Packets})
         benchmark::RegisterBenchmark(rays_name("", c.quantity, p, c.theta, t).c_str(), bm_rays, &realistic_field,
                                      c.quantity, p, c.theta, t, kRays)
             ->MinTime(kMinTime)->UseRealTime()->Unit(benchmark::kMillisecond);
@@ -337,7 +397,7 @@ int main(int argc, char** argv) {
   // 3. BVH size: tile 200 vs 10^6 grains, same tau0 = 0.5, beta = 1; 2 threads.
   for (const auto& fld : {std::pair<std::string, FieldFn>{"tile200/", &small_field}, {"1e6/", &big_field}}) {
     for (double theta : {0.0, 60.0, 85.0}) {
-      for (Path p : {Path::Estimator, Path::Trace, Path::Bare})
+      for (Path p : {Path::Estimator, Path::Trace, Path::Bare, Path::Packets})
         benchmark::RegisterBenchmark(rays_name(fld.first, "tau_plus", p, theta, 2).c_str(), bm_rays, fld.second,
                                      std::string("tau_plus"), p, theta, 2, kBigRays)
             ->MinTime(kMinTime)->UseRealTime()->Unit(benchmark::kMillisecond);
@@ -361,19 +421,21 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks(&reporter);
 
-  std::printf("\n== Summary: rays/s (M) and ratios to bare rtcIntersect1 (target >= 0.8) ==\n");
-  std::printf("%-22s %3s %10s %10s %10s %10s %10s %10s\n", "case", "thr", "estimator", "trace", "bare", "est/bare",
-              "trace/bare", "pair ratio");
+  std::printf("\n== Summary: rays/s (M) and ratios to bare rtcIntersect1 (target >= 0.9) and to bare rtcIntersect16 ==\n");
+  std::printf("%-22s %3s %10s %10s %10s %10s %10s %10s %10s %10s\n", "case", "thr", "estimator", "trace", "bare",
+              "packets", "est/bare", "est/packet", "pair ratio", "pair pkt");
   for (const Case& c : item1)
     for (int t : thread_counts) {
       const double e = reporter.get(rays_name("", c.quantity, Path::Estimator, c.theta, t), "rays/s");
       const double tr = reporter.get(rays_name("", c.quantity, Path::Trace, c.theta, t), "rays/s");
       const double b = reporter.get(rays_name("", c.quantity, Path::Bare, c.theta, t), "rays/s");
+      const double pk = reporter.get(rays_name("", c.quantity, Path::Packets, c.theta, t), "rays/s");
       const double pr = reporter.get(pair_name(c.quantity, c.theta, t), "ratio");
+      const double pp = reporter.get(pair_name(c.quantity, c.theta, t), "packet_ratio");
       char label[64];
       std::snprintf(label, sizeof label, "%s theta=%g", c.quantity.c_str(), c.theta);
-      std::printf("%-22s %3d %10.3f %10.3f %10.3f %10.3f %10.3f %10.3f%s\n", label, t, e / 1e6, tr / 1e6, b / 1e6,
-                  e / b, tr / b, pr, (pr < 0.8 || e / b < 0.8) ? "  < 0.8" : "");
+      std::printf("%-22s %3d %10.3f %10.3f %10.3f %10.3f %10.3f %10.3f %10.3f %10.3f%s\n", label, t, e / 1e6, tr / 1e6,
+                  b / 1e6, pk / 1e6, e / b, e / pk, pr, pp, (pr < 0.9 || e / b < 0.9) ? "  < 0.9" : "");
     }
   for (const char* name : {"build/1e6_grains/threads:1", "build/1e6_grains/threads:2"})
     std::printf("%s: grains %.0f, build %.2f s (target < 10), RSS +%.0f MiB, peak +%.0f MiB (target < 1024)\n", name,
@@ -381,18 +443,20 @@ int main(int argc, char** argv) {
                 reporter.get(name, "peak_MiB"));
   std::printf("%-22s %10s %10s %10s   (M rays/s; beta = 1, 2 threads)\n", "tau_plus", "tile200", "1e6", "1e6/t200");
   for (double theta : {0.0, 60.0, 85.0}) {
-    for (Path p : {Path::Estimator, Path::Trace, Path::Bare}) {
+    for (Path p : {Path::Estimator, Path::Trace, Path::Bare, Path::Packets}) {
       const double s = reporter.get(rays_name("tile200/", "tau_plus", p, theta, 2), "rays/s");
       const double l = reporter.get(rays_name("1e6/", "tau_plus", p, theta, 2), "rays/s");
       char label[64];
       std::snprintf(label, sizeof label, "theta=%g %s", theta, path_name(p));
       std::printf("%-22s %10.3f %10.3f %10.3f\n", label, s / 1e6, l / 1e6, l / s);
     }
-    const double s = reporter.get(pair_name("tau_plus", theta, 2, "tile200/"), "ratio");
-    const double l = reporter.get(pair_name("tau_plus", theta, 2, "1e6/"), "ratio");
-    char label[64];
-    std::snprintf(label, sizeof label, "theta=%g pair ratio", theta);
-    std::printf("%-22s %10.3f %10.3f\n", label, s, l);
+    for (const char* counter : {"ratio", "packet_ratio"}) {
+      const double s = reporter.get(pair_name("tau_plus", theta, 2, "tile200/"), counter);
+      const double l = reporter.get(pair_name("tau_plus", theta, 2, "1e6/"), counter);
+      char label[64];
+      std::snprintf(label, sizeof label, "theta=%g pair %s", theta, counter);
+      std::printf("%-22s %10.3f %10.3f\n", label, s, l);
+    }
   }
   {
     const double s = reporter.get(rays_name("tile200/", "g1", Path::Estimator, 60, 2), "samples/s");
