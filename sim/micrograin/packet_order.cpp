@@ -5,13 +5,18 @@
 namespace mcref {
 
 namespace {
-// The bits of x (< 2^8) spread to the even bit positions.
-std::uint32_t spread_bits(std::uint32_t x) {
-  x = (x | (x << 4)) & 0x0F0Fu;
-  x = (x | (x << 2)) & 0x3333u;
-  x = (x | (x << 1)) & 0x5555u;
-  return x;
-}
+// The bits of x (< 2^8) spread to the even bit positions, for every x.
+struct SpreadBits {
+  std::uint16_t of[256];
+  constexpr SpreadBits() : of() {
+    for (std::uint32_t x = 0; x < 256; ++x) {
+      std::uint32_t y = (x | (x << 4)) & 0x0F0Fu;
+      y = (y | (y << 2)) & 0x3333u;
+      of[x] = static_cast<std::uint16_t>((y | (y << 1)) & 0x5555u);
+    }
+  }
+};
+constexpr SpreadBits kSpread;
 }  // namespace
 
 void packet_order(const Vec3* origins, std::size_t n, double side_x, double side_y, std::size_t per_cell,
@@ -25,7 +30,7 @@ void packet_order(const Vec3* origins, std::size_t n, double side_x, double side
   for (std::size_t k = 0; k < n; ++k) {
     const int ix = std::clamp(static_cast<int>(origins[k].x * sx), 0, g - 1);
     const int iy = std::clamp(static_cast<int>(origins[k].y * sy), 0, g - 1);
-    cells[k] = spread_bits(static_cast<std::uint32_t>(ix)) | spread_bits(static_cast<std::uint32_t>(iy)) << 1;
+    cells[k] = kSpread.of[ix] | static_cast<std::uint32_t>(kSpread.of[iy]) << 1;
     ++count[cells[k] + 1];
   }
   for (std::size_t c = 1; c < count.size(); ++c) count[c] += count[c - 1];
