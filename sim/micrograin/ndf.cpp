@@ -27,25 +27,29 @@ Estimator ndf_estimator() {
       // The chunk's rays, traced in packets (scratch kept per thread).
       thread_local std::vector<Vec3> origins, normals;
       thread_local std::vector<Hit::Kind> kinds;
-      thread_local std::vector<std::uint32_t> count;  // per cell, then one for the rays not counted
+      // Per cell, then one for the rays not counted; 64-bit, a type no other
+      // datum in the loop has, so that stores to it cannot alias them.
+      thread_local std::vector<std::uint64_t> count;
       uniform_top_origins(f, rng, n, origins);
       kinds.resize(n);
       normals.resize(n);
       f.first_hits_unit(origins.data(), n, down, kinds.data(), normals.data());
       count.assign(cells + 1, 0);
-      std::uint32_t grains = 0;
+      std::uint64_t grains = 0;
+      const std::size_t nphi = ph.size();
+      std::uint64_t* tally = count.data();
       // Without branches on the (random) kind: a ray off the grains counts in count[cells].
       for (std::uint64_t k = 0; k < n; ++k) {
         const bool grain = kinds[k] == Hit::Kind::Grain;
         grains += grain;
         const int a = theta_m.bin(normals[k].z);
         int b = 0;
-        if (ph.size() > 1 && grain) b = ph.find_bin(spherical_phi(normals[k]));
+        if (nphi > 1 && grain) b = ph.find_bin(spherical_phi(normals[k]));
         const bool in = grain & (a >= 0) & (b >= 0);
-        ++count[in ? a * ph.size() + b : cells];
+        ++tally[in ? a * nphi + b : cells];
       }
-      s[cells] += grains;
-      for (std::size_t c = 0; c < cells; ++c) s[c] += count[c];
+      s[cells] += static_cast<double>(grains);
+      for (std::size_t c = 0; c < cells; ++c) s[c] += static_cast<double>(count[c]);
     });
     std::vector<double> est(cells, 0.0);
     const double grain_hits = acc[cells];
