@@ -4,7 +4,8 @@
 // (about linear in theta) gives a first bin, and comparisons of z with the
 // edges' thresholds correct it. The thresholds are the doubles at which
 // axis.find_bin(spherical_theta) changes, found once by bisection over the
-// doubles, so the bin is exactly the one of glibc's acos (which is monotone).
+// doubles, so the bin is exactly acos's as long as acos is monotone (tested:
+// tests/sim/tally/test_polar_bins.cpp).
 #include <algorithm>
 #include <cmath>
 #include <vector>
