@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "sim/slab/density_grid.h"
+#include "sim/slab/voxel_density.h"
 
 namespace mcref::volume {
 
@@ -151,7 +152,7 @@ class GridFlight final : public FreeFlight {
     const double u = rng.uniform() * M.hi[cell];
     if (u < M.lo[cell]) return true;  // below the cell's least density: no lookup needed
     const double x = p.x + p.d.x * t, y = p.y + p.d.y * t, depth = p.depth - p.d.z * t;
-    if (!M.s_varies) return u < lookup_.density(p.layer, x, y, depth);
+    if (!M.s_varies) return u < m_.voxels()->density(p.layer, x, y, depth);
     sggx::Mat3 S;
     const double rho = lookup_.density_and_sggx(p.layer, x, y, depth, S);
     if (!(u < rho * std::sqrt(std::fmax(0.0, sggx::quadratic_form(S, p.d))))) return false;

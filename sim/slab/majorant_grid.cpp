@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "sim/slab/density_grid.h"
 
@@ -95,7 +96,8 @@ std::vector<LayerMajorants> build_majorants(const DensityGrids& g) {
       L.s_varies = !L.one_s;
       if (L.one_s) L.s = sggx::from_matrix(s0);
     }
-    const int m = laterally_uniform(*g.grids()[k]) ? 1 : n, b = n / m;
+    const int block = getenv("MCREF_BLOCK") ? atoi(getenv("MCREF_BLOCK")) : 1;
+    const int m = laterally_uniform(*g.grids()[k]) ? 1 : n / block, b = n / m;
     L.lateral = m;
     L.cell_size = geo.grid.tile / m;
     // Bounds per voxel interval in depth (r = 0 at the top) and lateral cell.

@@ -1,6 +1,7 @@
 #include "sim/slab/medium.h"
 
 #include "sim/slab/density_grid.h"
+#include "sim/slab/voxel_density.h"
 
 namespace mcref::volume {
 
@@ -19,7 +20,10 @@ SlabMedium::SlabMedium(const SlabGeometry& g, std::unique_ptr<DensityGrids> grid
     layers_.push_back(std::move(m));
     top += l.thickness;
   }
-  if (grids_) majorants_ = build_majorants(*grids_);
+  if (grids_) {
+    majorants_ = build_majorants(*grids_);
+    voxels_ = std::make_unique<VoxelDensity>(*grids_);
+  }
 }
 
 SlabMedium::~SlabMedium() = default;

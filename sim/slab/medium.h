@@ -13,6 +13,7 @@
 namespace mcref::volume {
 
 class DensityGrids;
+class VoxelDensity;
 
 struct MediumLayer {
   double top = 0, bottom = 0;  // depths of the faces
@@ -36,12 +37,15 @@ class SlabMedium {
   const DensityGrids* grids() const { return grids_.get(); }
   // Per layer (OpenVDB grids only).
   const std::vector<LayerMajorants>& majorants() const { return majorants_; }
+  // Dense copy of the density voxels for the lookups (OpenVDB grids only).
+  const VoxelDensity* voxels() const { return voxels_.get(); }
 
  private:
   SlabGeometry geometry_;
   std::vector<MediumLayer> layers_;
   std::unique_ptr<DensityGrids> grids_;
   std::vector<LayerMajorants> majorants_;
+  std::unique_ptr<VoxelDensity> voxels_;
 };
 
 }  // namespace mcref::volume
