@@ -162,15 +162,24 @@ openvdb::GridPtrVec DensityGrids::all_grids() const {
 }
 
 GridLookup::GridLookup(const DensityGrids& g) : g_(g) {
-  for (std::size_t k = 0; k < g.grids().size(); ++k) {
-    acc_.push_back(g.grids()[k]->getConstAccessor());
-    diag_.push_back(g.s_diag(k) ? std::make_unique<openvdb::Vec3DGrid::ConstAccessor>(g.s_diag(k)->getConstAccessor()) : nullptr);
-    off_.push_back(g.s_offdiag(k) ? std::make_unique<openvdb::Vec3DGrid::ConstAccessor>(g.s_offdiag(k)->getConstAccessor()) : nullptr);
+  for (std::size_t k = 0; k < g.grids_.size(); ++k) {
+    acc_.push_back(g.grids_[k]->getConstAccessor());
+    diag_.push_back(g.s_diag_[k] ? std::make_unique<openvdb::Vec3DGrid::ConstAccessor>(g.s_diag_[k]->getConstAccessor()) : nullptr);
+    off_.push_back(g.s_offdiag_[k] ? std::make_unique<openvdb::Vec3DGrid::ConstAccessor>(g.s_offdiag_[k]->getConstAccessor()) : nullptr);
   }
 }
 
+openvdb::Vec3R GridLookup::index(int k, double x, double y, double depth) const {
+  const double n = g_.n_lateral_;
+  double ix = std::fmod(x / g_.hx_, n), iy = std::fmod(y / g_.hx_, n);
+  if (ix < 0) ix += n;
+  if (iy < 0) iy += n;
+  const double iz = std::fmin(g_.geometry_.grid.depth_voxels, std::fmax(0.0, (g_.bottom_[k] - depth) / g_.hz_[k]));
+  return {ix, iy, iz};
+}
+
 double GridLookup::density(int k, double x, double y, double depth) {
-  return openvdb::tools::BoxSampler::sample(acc_[k], g_.index(k, x, y, depth));
+  return openvdb::tools::BoxSampler::sample(acc_[k], index(k, x, y, depth));
 }
 
 sggx::Mat3 GridLookup::matrix_at(int k, const openvdb::Vec3R& ijk) {
@@ -187,11 +196,11 @@ sggx::Mat3 GridLookup::matrix_at(int k, const openvdb::Vec3R& ijk) {
 }
 
 sggx::Mat3 GridLookup::sggx_matrix(int k, double x, double y, double depth) {
-  return matrix_at(k, g_.index(k, x, y, depth));
+  return matrix_at(k, index(k, x, y, depth));
 }
 
 double GridLookup::density_and_sggx(int k, double x, double y, double depth, sggx::Mat3& s) {
-  const openvdb::Vec3R ijk = g_.index(k, x, y, depth);
+  const openvdb::Vec3R ijk = index(k, x, y, depth);
   s = matrix_at(k, ijk);
   return openvdb::tools::BoxSampler::sample(acc_[k], ijk);
 }

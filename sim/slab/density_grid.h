@@ -20,7 +20,6 @@
 // max_density(k) * max_sigma(k) is a direction-free majorant of
 // rho(x) sigma(w; S(x)). (The maximum over voxels of the product rho sqrt(lambda_max)
 // would not bound the product of two interpolated fields.)
-#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -52,18 +51,9 @@ class DensityGrids {
   // field of one column (trapezoids between the voxel planes).
   double column_optical_thickness(std::size_t k) const;
   const SlabGeometry& geometry() const { return geometry_; }
-  // Index-space coordinates of a point of layer k: laterally wrapped into the
-  // tile, in depth clamped to the layer.
-  openvdb::Vec3R index(int k, double x, double y, double depth) const {
-    const double n = n_lateral_;
-    double ix = std::fmod(x / hx_, n), iy = std::fmod(y / hx_, n);
-    if (ix < 0) ix += n;
-    if (iy < 0) iy += n;
-    const double iz = std::fmin(geometry_.grid.depth_voxels, std::fmax(0.0, (bottom_[k] - depth) / hz_[k]));
-    return {ix, iy, iz};
-  }
 
  private:
+  friend class GridLookup;
   SlabGeometry geometry_;
   std::vector<openvdb::FloatGrid::Ptr> grids_;
   std::vector<openvdb::Vec3DGrid::Ptr> s_diag_, s_offdiag_;
@@ -84,6 +74,7 @@ class GridLookup {
   double density_and_sggx(int layer, double x, double y, double depth, sggx::Mat3& s);
 
  private:
+  openvdb::Vec3R index(int layer, double x, double y, double depth) const;
   sggx::Mat3 matrix_at(int layer, const openvdb::Vec3R& ijk);
   const DensityGrids& g_;
   std::vector<openvdb::FloatGrid::ConstAccessor> acc_;

@@ -26,8 +26,9 @@ class SlabMedium {
   // Builds the OpenVDB grids too when geometry.grid.openvdb is set.
   explicit SlabMedium(const SlabGeometry& geometry);
   // Over given grids of that geometry (e.g. with voxels edited after
-  // DensityGrids built them); the majorants are read from the grids' voxels.
-  SlabMedium(const SlabGeometry& geometry, std::unique_ptr<DensityGrids> grids);
+  // DensityGrids built them); the majorants are read from the grids' voxels
+  // (lateral_block: see build_majorants).
+  SlabMedium(const SlabGeometry& geometry, std::unique_ptr<DensityGrids> grids, int lateral_block = 1);
   ~SlabMedium();
   const SlabGeometry& geometry() const { return geometry_; }
   const std::vector<MediumLayer>& layers() const { return layers_; }

@@ -1,13 +1,16 @@
 #pragma once
 // A dense copy of each layer's density voxels (sim/slab/density_grid.h) for
-// the lookups of delta tracking (sim/slab/free_flight.cpp): a flat array and
-// the trilinear reconstruction of openvdb::tools::BoxSampler, operation for
-// operation, so density() returns the bits GridLookup::density() returns
-// (same index transform, same corners, same float arithmetic), without the
-// value accessor's tree walk. Copied as the grids are when built; it holds
+// the lookups of delta tracking (sim/slab/free_flight.cpp): the trilinear
+// reconstruction of openvdb::tools::BoxSampler (the same corners, weights and
+// float arithmetic) over a flat array, with the index-space transform done by
+// multiplications and an integer floor instead of divisions and fmod, and
+// without the value accessor's tree walk. The result equals GridLookup's to
+// rounding of the weights (a float ulp or so); both are convex combinations
+// of the corner voxels, which is what the majorants bound
+// (sim/slab/majorant_grid.h). Copied as the grids are when built; it holds
 // every value the sampler can read: index planes 0 ... N + 1 laterally and
 // 0 ... depth_voxels + 1 in depth (the last ones are reached only with
-// weight 0 and read the grid's background, as the sampler does).
+// weight 0 and hold the grid's background, as the sampler reads them).
 #include <cstddef>
 #include <vector>
 
@@ -15,30 +18,46 @@
 
 namespace mcref::volume {
 
+// v wrapped periodically into [0, n) (inv_n = 1 / n): a floor without a libm
+// call or a division; q may round across an integer, which the last two
+// lines undo.
+inline double wrap_periodic(double v, double n, double inv_n) {
+  const double q = v * inv_n;
+  long fl = static_cast<long>(q);
+  fl -= q < static_cast<double>(fl);
+  double w = v - n * static_cast<double>(fl);
+  w = w < 0 ? w + n : w;
+  return w >= n ? w - n : w;
+}
+
 class VoxelDensity {
  public:
   explicit VoxelDensity(const DensityGrids& grids);
-  double density(int layer, double x, double y, double depth) const {
-    return sample(layer, grids_.index(layer, x, y, depth));
-  }
+  // The density at a point of layer k (lateral coordinates anywhere: periodic).
+  double density(int k, double x, double y, double depth) const;
 
  private:
-  double sample(int layer, const openvdb::Vec3R& ijk) const;
-  const DensityGrids& grids_;
-  int nx_ = 0, nz_ = 0;  // stored planes per lateral axis, in depth
-  std::vector<std::vector<float>> values_;  // per layer, index (i * nx + j) * nz + k
+  struct Layer {
+    double bottom = 0, inv_hz = 1;
+    std::vector<float> values;  // index (i * planes + j) * depth_planes + k
+  };
+  std::vector<Layer> layers_;
+  double inv_hx_ = 1, n_ = 1, inv_n_ = 1, nz_ = 1;
+  std::ptrdiff_t planes_ = 0, depth_planes_ = 0;  // stored per lateral axis, in depth
 };
 
-inline double VoxelDensity::sample(int layer, const openvdb::Vec3R& ijk) const {
-  const openvdb::Vec3i c = openvdb::tools::local_util::floorVec3(ijk);
-  const openvdb::Vec3R uvw = ijk - c;
-  const float* v = values_[static_cast<std::size_t>(layer)].data() +
-                   (static_cast<std::ptrdiff_t>(c[0]) * nx_ + c[1]) * nz_ + c[2];
-  const std::ptrdiff_t di = static_cast<std::ptrdiff_t>(nx_) * nz_, dj = nz_;
-  // BoxSampler::trilinearInterpolation: a + float((b - a) w) in float.
-  const auto lerp = [](float a, float b, double w) { return static_cast<float>(a + static_cast<float>((b - a) * w)); };
-  return lerp(lerp(lerp(v[0], v[1], uvw[2]), lerp(v[dj], v[dj + 1], uvw[2]), uvw[1]),
-              lerp(lerp(v[di], v[di + 1], uvw[2]), lerp(v[di + dj], v[di + dj + 1], uvw[2]), uvw[1]), uvw[0]);
+inline double VoxelDensity::density(int k, double x, double y, double depth) const {
+  const Layer& l = layers_[static_cast<std::size_t>(k)];
+  const double ix = wrap_periodic(x * inv_hx_, n_, inv_n_), iy = wrap_periodic(y * inv_hx_, n_, inv_n_);
+  const double iz = std::fmin(nz_, std::fmax(0.0, (l.bottom - depth) * l.inv_hz));
+  const int ci = static_cast<int>(ix), cj = static_cast<int>(iy), ck = static_cast<int>(iz);  // >= 0: floor
+  const double u = ix - ci, v = iy - cj, w = iz - ck;
+  const float* p = l.values.data() + (ci * planes_ + cj) * depth_planes_ + ck;
+  const std::ptrdiff_t di = planes_ * depth_planes_, dj = depth_planes_;
+  // Trilinear in double (OpenVDB's BoxSampler rounds each step to float).
+  const auto lerp = [](double a, double b, double t) { return a + (b - a) * t; };
+  return lerp(lerp(lerp(p[0], p[1], w), lerp(p[dj], p[dj + 1], w), v),
+              lerp(lerp(p[di], p[di + 1], w), lerp(p[di + dj], p[di + dj + 1], w), v), u);
 }
 
 }  // namespace mcref::volume
