@@ -5,7 +5,9 @@
 // majorant hi * factor(w), and rho(x) at or above its minorant lo; so does the
 // density of the dense copy the flights read (VoxelDensity). The voxels
 // are random, the stored periodic seam column included, and so is S in one
-// layer. Also: bit-identical tables for 1 and 2 threads on the grid path.
+// layer. Also: the dense copy agrees with OpenVDB's sampler; bit-identical
+// tables for 1 and 2 threads on the grid path; lateral flights that do not
+// depend on the cell size of the majorants.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -150,6 +152,56 @@ TEST(SlabMajorants, BoundTheExtinctionInEveryCell) {
   EXPECT_GT(samples, 10000u);
   EXPECT_EQ(over, 0u) << first.str();
   EXPECT_EQ(under, 0u) << first.str();
+}
+
+// The dense copy of the density voxels the flights read (VoxelDensity) agrees
+// with OpenVDB's trilinear sampler (GridLookup::density, which rounds each of
+// its 7 interpolations to float) to 1e-6 of the largest voxel (3.2) at random
+// points of every layer, in lateral images of the tile, on voxel planes, within
+// rounding of them, on the tile's edges and on the layer's faces. The voxels are
+// random, with the seam columns repeating columns 0 as DensityGrids stores them
+// (with a seam that does not, a point on the tile's edge may read either; the
+// test above checks that the majorants bound both).
+TEST(SlabMajorants, DenseDensityAgreesWithTheOpenVdbSampler) {
+  const Experiment ex = parse_experiment(kGeometry, "m.toml");
+  const SlabGeometry& g = ex.slab;
+  Rng rng(11);
+  auto grids = random_grids(g, rng);
+  const int n = g.grid.lateral_voxels, nz = g.grid.depth_voxels;
+  for (const openvdb::FloatGrid::Ptr& grid : grids->grids()) {
+    auto acc = grid->getAccessor();
+    for (int z = 0; z <= nz; ++z)
+      for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i)
+          if (i == n || j == n) acc.setValue(openvdb::Coord(i, j, z), acc.getValue(openvdb::Coord(i % n, j % n, z)));
+  }
+  const volume::VoxelDensity dense(*grids);
+  volume::GridLookup lookup(*grids);
+  const double tile = g.grid.tile, h = tile / n;
+  std::size_t samples = 0, differ = 0;
+  double top = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double thickness = g.layers[k].thickness, hz = thickness / nz;
+    // A coordinate on a voxel plane, within rounding of one, or anywhere.
+    const auto coordinate = [&](double step, int planes, double lo) {
+      const double u = rng.uniform(), plane = lo + step * std::floor(rng.uniform() * (planes + 1));
+      if (u < 0.2) return plane;
+      if (u < 0.3) return std::nextafter(plane, -INFINITY);
+      if (u < 0.4) return std::nextafter(plane, INFINITY);
+      return lo + step * planes * rng.uniform();
+    };
+    for (int s = 0; s < 100000; ++s, ++samples) {
+      const double x = coordinate(h, n, 0) + tile * std::floor(7 * rng.uniform() - 3);
+      const double y = coordinate(h, n, 0) + tile * std::floor(7 * rng.uniform() - 3);
+      const double depth = std::fmin(top + thickness, std::fmax(top, coordinate(hz, nz, top)));
+      const double a = dense.density(k, x, y, depth), b = lookup.density(k, x, y, depth);
+      if (!(std::fabs(a - b) <= 1e-6 * 3.2) && ++differ == 1)
+        ADD_FAILURE() << "layer " << k << " at (" << x << ", " << y << ", " << depth << "): dense " << a << ", sampler " << b;
+    }
+    top += thickness;
+  }
+  EXPECT_EQ(samples, 300000u);
+  EXPECT_EQ(differ, 0u);
 }
 
 // The majorant of a cell is the bound of the field, not more: at its corners
