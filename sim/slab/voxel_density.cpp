@@ -9,7 +9,7 @@ VoxelDensity::VoxelDensity(const DensityGrids& g) {
   n_ = n;
   inv_n_ = 1.0 / n;
   nz_ = nz;
-  planes_ = n + 2;
+  planes_ = n + 1;
   depth_planes_ = nz + 2;
   double top = 0;
   for (std::size_t k = 0; k < g.grids().size(); ++k) {

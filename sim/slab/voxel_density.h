@@ -1,16 +1,17 @@
 #pragma once
 // A dense copy of each layer's density voxels (sim/slab/density_grid.h) for
 // the lookups of delta tracking (sim/slab/free_flight.cpp): the trilinear
-// reconstruction of openvdb::tools::BoxSampler (the same corners, weights and
-// float arithmetic) over a flat array, with the index-space transform done by
-// multiplications and an integer floor instead of divisions and fmod, and
-// without the value accessor's tree walk. The result equals GridLookup's to
-// rounding of the weights (a float ulp or so); both are convex combinations
-// of the corner voxels, which is what the majorants bound
-// (sim/slab/majorant_grid.h). Copied as the grids are when built; it holds
-// every value the sampler can read: index planes 0 ... N + 1 laterally and
-// 0 ... depth_voxels + 1 in depth (the last ones are reached only with
-// weight 0 and hold the grid's background, as the sampler reads them).
+// reconstruction of openvdb::tools::BoxSampler (the same corners and weights)
+// over a flat array, in double where BoxSampler rounds each interpolation to
+// float, with the index-space transform done by multiplications and an
+// integer floor instead of divisions and fmod, and without the value
+// accessor's tree walk. Both are convex combinations of the corner voxels
+// (to rounding), which is what the majorants bound (sim/slab/majorant_grid.h);
+// they differ by the sampler's float rounding. Copied as the grids are when
+// built: index planes 0 ... N laterally (the stored seam N included) and
+// 0 ... depth_voxels + 1 in depth (the last one, the grid's background, is
+// read with weight 0 on the bottom face, as the sampler reads it).
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -43,7 +44,7 @@ class VoxelDensity {
   };
   std::vector<Layer> layers_;
   double inv_hx_ = 1, n_ = 1, inv_n_ = 1, nz_ = 1;
-  std::ptrdiff_t planes_ = 0, depth_planes_ = 0;  // stored per lateral axis, in depth
+  std::ptrdiff_t planes_ = 0, depth_planes_ = 0;  // stored per lateral axis (N + 1), in depth
 };
 
 inline double VoxelDensity::density(int k, double x, double y, double depth) const {
