@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "sim/slab/density_grid.h"
+#include "sim/slab/voxel_density.h"
 
 namespace mcref::volume {
 
@@ -64,11 +65,14 @@ class HomogeneousFlight final : public FreeFlight {
 // at the layer's faces, where the loop moves to the next layer as track() does.
 class GridFlight final : public FreeFlight {
  public:
-  explicit GridFlight(const SlabMedium& m) : m_(m), lookup_(*m.grids()) {}
+  explicit GridFlight(const SlabMedium& m) : m_(m), voxels_(*m.voxels()), lookup_(*m.grids()) {}
   Flight fly(Photon& p, Rng& rng) override {
     have_s_ = false;
     const std::vector<MediumLayer>& layers = m_.layers();
-    const double rate = -p.d.z, tile = m_.geometry().grid.tile;
+    const double rate = -p.d.z, inv_rate = 1 / rate;
+    // Once per flight (the direction is fixed): the inverse direction cosines.
+    const double inv_dx = 1 / p.d.x, inv_dy = 1 / p.d.y;
+    const int sx = p.d.x > 0 ? 1 : -1, sy = p.d.y > 0 ? 1 : -1;
     double tau = -std::log1p(-rng.uniform());
     for (;;) {
       const LayerMajorants& M = m_.majorants()[p.layer];
@@ -76,27 +80,22 @@ class GridFlight final : public FreeFlight {
       const int m = M.lateral;
       // The cell holding the photon (on a face: the cell below it).
       int iz = static_cast<int>(std::upper_bound(M.faces.begin() + 1, M.faces.end() - 1, p.depth) - (M.faces.begin() + 1));
-      int ix = 0, iy = 0, sx = 0, sy = 0;
+      int ix = 0, iy = 0;
       double tx = INFINITY, ty = INFINITY, dtx = 0, dty = 0;
-      if (m > 1) {
-        const double c = M.cell_size;
-        const double xw = p.x - tile * std::floor(p.x / tile), yw = p.y - tile * std::floor(p.y / tile);
-        ix = std::min(m - 1, static_cast<int>(xw / c));
-        iy = std::min(m - 1, static_cast<int>(yw / c));
+      if (m > 1) {  // lateral position in cell units, wrapped into the tile
+        const double c = M.cell_size, inv_m = 1.0 / m;
+        const double xc = wrap_periodic(p.x * M.inv_cell_size, m, inv_m), yc = wrap_periodic(p.y * M.inv_cell_size, m, inv_m);
+        ix = static_cast<int>(xc);
+        iy = static_cast<int>(yc);
         if (p.d.x != 0) {
-          const double inv = 1 / p.d.x;
-          sx = p.d.x > 0 ? 1 : -1;
-          dtx = c * std::fabs(inv);
-          tx = ((ix + (sx > 0)) * c - xw) * inv;
+          dtx = c * std::fabs(inv_dx);
+          tx = ((ix + (sx > 0)) - xc) * c * inv_dx;
         }
         if (p.d.y != 0) {
-          const double inv = 1 / p.d.y;
-          sy = p.d.y > 0 ? 1 : -1;
-          dty = c * std::fabs(inv);
-          ty = ((iy + (sy > 0)) * c - yw) * inv;
+          dty = c * std::fabs(inv_dy);
+          ty = ((iy + (sy > 0)) - yc) * c * inv_dy;
         }
       }
-      const double inv_rate = 1 / rate;
       const auto face_t = [&](int cell) {
         return rate > 0 ? (M.faces[cell + 1] - p.depth) * inv_rate : rate < 0 ? (M.faces[cell] - p.depth) * inv_rate : INFINITY;
       };
@@ -151,7 +150,7 @@ class GridFlight final : public FreeFlight {
     const double u = rng.uniform() * M.hi[cell];
     if (u < M.lo[cell]) return true;  // below the cell's least density: no lookup needed
     const double x = p.x + p.d.x * t, y = p.y + p.d.y * t, depth = p.depth - p.d.z * t;
-    if (!M.s_varies) return u < lookup_.density(p.layer, x, y, depth);
+    if (!M.s_varies) return u < voxels_.density(p.layer, x, y, depth);
     sggx::Mat3 S;
     const double rho = lookup_.density_and_sggx(p.layer, x, y, depth, S);
     if (!(u < rho * std::sqrt(std::fmax(0.0, sggx::quadratic_form(S, p.d))))) return false;
@@ -161,7 +160,8 @@ class GridFlight final : public FreeFlight {
   }
 
   const SlabMedium& m_;
-  GridLookup lookup_;
+  const VoxelDensity& voxels_;
+  GridLookup lookup_;  // S(x), where it varies
   sggx::Sggx s_;
   bool have_s_ = false;
 };

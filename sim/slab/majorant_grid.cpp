@@ -79,7 +79,7 @@ bool laterally_uniform(const openvdb::FloatGrid& grid) {
 
 }  // namespace
 
-std::vector<LayerMajorants> build_majorants(const DensityGrids& g) {
+std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_block) {
   const SlabGeometry& geo = g.geometry();
   const int n = geo.grid.lateral_voxels, nz = geo.grid.depth_voxels;
   std::vector<LayerMajorants> out;
@@ -95,9 +95,10 @@ std::vector<LayerMajorants> build_majorants(const DensityGrids& g) {
       L.s_varies = !L.one_s;
       if (L.one_s) L.s = sggx::from_matrix(s0);
     }
-    const int m = laterally_uniform(*g.grids()[k]) ? 1 : n, b = n / m;
+    const int m = laterally_uniform(*g.grids()[k]) ? 1 : n / lateral_block, b = n / m;
     L.lateral = m;
     L.cell_size = geo.grid.tile / m;
+    L.inv_cell_size = m / geo.grid.tile;
     // Bounds per voxel interval in depth (r = 0 at the top) and lateral cell.
     std::vector<Bounds> fine(static_cast<std::size_t>(nz) * m * m);
     for (int r = 0; r < nz; ++r)

@@ -4,16 +4,18 @@
 // sim/slab/free_flight.cpp.
 //
 // Extinction: sigma_t(x, w) = rho(x) sigma(w; S(x)), sigma(w; S) = sqrt(w^T S w)
-// (SpongeCake Eq. 3; sigma = 1 for non-SGGX layers). GridLookup reconstructs
-// rho and S trilinearly (BoxSampler) from the voxels at the corners of the
-// voxel cell around x: a convex combination of them, so in a voxel cell
+// (SpongeCake Eq. 3; sigma = 1 for non-SGGX layers). The flights reconstruct
+// rho (VoxelDensity) and S (GridLookup, BoxSampler) trilinearly from the voxels
+// at the corners of the voxel cell around x: a convex combination of them
+// (to rounding, which kMargin covers), so in a voxel cell
 //   min_corners rho <= rho(x) <= max_corners rho,
 //   sigma(w; S(x))^2 = sum_i w_i w^T S_i w <= max_corners lambda_max(S_i).
 // The corner past the last column is read both as stored (column N) and wrapped
 // (column 0): the bounds hold whether or not the grid stores the periodic seam.
 //
-// Cells: laterally one per voxel column (m = lateral_voxels), or one for the
-// whole tile when the layer's density does not vary laterally (m = 1); in depth,
+// Cells: laterally one per voxel column (m = lateral_voxels; or square blocks
+// of columns, for tests), or one for the whole tile when the layer's density
+// does not vary laterally (m = 1); in depth,
 // runs of voxel intervals, merged while in every column the run's bounds stay
 // within kMergeRange of each interval's own (a constant profile: one cell). Per cell:
 //  - hi: rho_max * sqrt(max lambda_max(S)) if the layer's S varies, else rho_max;
@@ -38,6 +40,7 @@ inline constexpr double kMargin = 1e-5;
 struct LayerMajorants {
   int lateral = 1;                // m: cells per tile side
   double cell_size = 1;           // tile / m
+  double inv_cell_size = 1;       // m / tile
   std::vector<double> faces;      // depths of the cell faces, top to bottom (cells + 1)
   std::vector<double> hi, lo;     // per cell, index (depth_cell * m + j) * m + i
   std::vector<double> row_hi;     // max of hi over each depth row of cells
@@ -48,7 +51,9 @@ struct LayerMajorants {
   double factor(Vec3 w) const { return one_s ? sggx::projected_area(s, w) : 1.0; }
 };
 
-// The majorants of every layer of the grids (as they are when built).
-std::vector<LayerMajorants> build_majorants(const DensityGrids& grids);
+// The majorants of every layer of the grids (as they are when built);
+// lateral_block voxel columns per cell side (a divisor of lateral_voxels; 1: the
+// default, one cell per voxel column; lateral_voxels: one per layer and depth run).
+std::vector<LayerMajorants> build_majorants(const DensityGrids& grids, int lateral_block = 1);
 
 }  // namespace mcref::volume

@@ -1,13 +1,14 @@
 #include "sim/slab/medium.h"
 
 #include "sim/slab/density_grid.h"
+#include "sim/slab/voxel_density.h"
 
 namespace mcref::volume {
 
 SlabMedium::SlabMedium(const SlabGeometry& g)
     : SlabMedium(g, g.grid.openvdb ? std::make_unique<DensityGrids>(g) : nullptr) {}
 
-SlabMedium::SlabMedium(const SlabGeometry& g, std::unique_ptr<DensityGrids> grids)
+SlabMedium::SlabMedium(const SlabGeometry& g, std::unique_ptr<DensityGrids> grids, int lateral_block)
     : geometry_(g), grids_(std::move(grids)) {
   double top = 0;
   for (const SlabLayer& l : g.layers) {
@@ -19,7 +20,10 @@ SlabMedium::SlabMedium(const SlabGeometry& g, std::unique_ptr<DensityGrids> grid
     layers_.push_back(std::move(m));
     top += l.thickness;
   }
-  if (grids_) majorants_ = build_majorants(*grids_);
+  if (grids_) {
+    majorants_ = build_majorants(*grids_, lateral_block);
+    voxels_ = std::make_unique<VoxelDensity>(*grids_);
+  }
 }
 
 SlabMedium::~SlabMedium() = default;

@@ -13,6 +13,7 @@
 namespace mcref::volume {
 
 class DensityGrids;
+class VoxelDensity;
 
 struct MediumLayer {
   double top = 0, bottom = 0;  // depths of the faces
@@ -25,8 +26,9 @@ class SlabMedium {
   // Builds the OpenVDB grids too when geometry.grid.openvdb is set.
   explicit SlabMedium(const SlabGeometry& geometry);
   // Over given grids of that geometry (e.g. with voxels edited after
-  // DensityGrids built them); the majorants are read from the grids' voxels.
-  SlabMedium(const SlabGeometry& geometry, std::unique_ptr<DensityGrids> grids);
+  // DensityGrids built them); the majorants are read from the grids' voxels
+  // (lateral_block: see build_majorants).
+  SlabMedium(const SlabGeometry& geometry, std::unique_ptr<DensityGrids> grids, int lateral_block = 1);
   ~SlabMedium();
   const SlabGeometry& geometry() const { return geometry_; }
   const std::vector<MediumLayer>& layers() const { return layers_; }
@@ -36,12 +38,15 @@ class SlabMedium {
   const DensityGrids* grids() const { return grids_.get(); }
   // Per layer (OpenVDB grids only).
   const std::vector<LayerMajorants>& majorants() const { return majorants_; }
+  // Dense copy of the density voxels for the lookups (OpenVDB grids only).
+  const VoxelDensity* voxels() const { return voxels_.get(); }
 
  private:
   SlabGeometry geometry_;
   std::vector<MediumLayer> layers_;
   std::unique_ptr<DensityGrids> grids_;
   std::vector<LayerMajorants> majorants_;
+  std::unique_ptr<VoxelDensity> voxels_;
 };
 
 }  // namespace mcref::volume
