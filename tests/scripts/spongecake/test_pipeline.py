@@ -139,6 +139,20 @@ def test_train_cli(tiny):
     p2 = run("train.py", str(out), "-o", str(d / "net2.h5"), "--epochs", "3", "--seed", "2", "--quiet")
     with h5py.File(weights) as a, h5py.File(d / "net2.h5") as b:
         assert np.array_equal(a["linear3/weight"][:], b["linear3/weight"][:]) and p2.returncode == 0
+    # --stream (mini-batches read from the file) gives the same weights and histories as the
+    # dataset held in memory, with every cell and with random cells per batch
+    for extra in ([], ["--cells", "20"]):
+        paths = []
+        for stream in ([], ["--stream"]):
+            paths.append(d / f"net_{len(extra)}_{len(stream)}.h5")
+            p = run("train.py", str(out), "-o", str(paths[-1]), "--epochs", "3", "--seed", "2", "--quiet", *extra, *stream)
+            assert p.returncode == 0, p.stderr
+        with h5py.File(paths[0]) as a, h5py.File(paths[1]) as b:
+            names = []
+            a.visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Dataset) else None)
+            assert "history/val_loss" in names and "linear0/weight" in names
+            for n in names:
+                assert np.array_equal(a[n][()], b[n][()]), n
     # the figures of the held-out entry and the evaluation for new layer parameters
     p = run("figures.py", str(out), str(fits), str(weights), "-o", str(d), "--prefix", "tiny")
     assert p.returncode == 0, p.stderr
