@@ -192,12 +192,11 @@ def main(argv=None):
         print(f"figures: {e}", file=sys.stderr)
         return 2
     split = tuple(float(v) for v in attrs["split"])
-    rows, cache = [], {}
+    rows = []  # one entry in memory at a time; the entries drawn are read again below
     for i in held:
         m = dataset.read_material(a.data, i)
         fitted, predicted = predictions(a.data, i, m, fits, net, split)
         ms, total = m.ms.numpy(), m.total.numpy()
-        cache[i] = (m, fitted, predicted)
         k = list(fits["index"]).index(i)
         rows.append(errors.entry_row(i, [l.fiber for l in m.layers], [l.alpha for l in m.layers], [l.albedo for l in m.layers],
                                      [l.thickness for l in m.layers],
@@ -221,7 +220,8 @@ def main(argv=None):
     k_theta = int(np.argmin(np.abs(np.degrees(theta_i) - 35)))
     bsdf, lobes = [], []
     for r in picks:
-        m, fitted, predicted = cache[r["entry"]]
+        m = dataset.read_material(a.data, r["entry"])
+        fitted, predicted = predictions(a.data, r["entry"], m, fits, net, split)
         title = f"{describe(m, r['entry'])}; network {100 * r['network_ms']:.0f} %, fit {100 * r['fit_ms']:.0f} %"
         bsdf.append((title, m.ms.numpy(), fitted, predicted))
         single = m.total.numpy() - m.ms.numpy()
