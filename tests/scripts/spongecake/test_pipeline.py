@@ -64,13 +64,19 @@ def run(script, *args):
                           text=True, env=env)
 
 
-@pytest.fixture(scope="module")
-def tiny(tmp_path_factory):
+def tiny_dir(tmp_path_factory, name):
+    """A new directory holding base.toml and tiny.toml (BASE, DATASET); skips without MCREF_BINARY."""
     if not BINARY:
         pytest.skip("needs MCREF_BINARY (ctest sets it)")
-    d = tmp_path_factory.mktemp("tiny")
+    d = tmp_path_factory.mktemp(name)
     (d / "base.toml").write_text(BASE)
     (d / "tiny.toml").write_text(DATASET)
+    return d
+
+
+@pytest.fixture(scope="module")
+def tiny(tmp_path_factory):
+    d = tiny_dir(tmp_path_factory, "tiny")
     out = d / "tiny.h5"
     p = subprocess.run([BINARY, "dataset", str(d / "tiny.toml"), "-o", str(out), "--quiet", "--threads", "1"],
                        capture_output=True, text=True)

@@ -5,16 +5,11 @@
 # date and writes the same rows, that a changed setting reruns only what depends on it,
 # and the rejection of a bad stage file (one line, exit 2, nothing created).
 import json
-import os
-import subprocess
-import sys
 
 import pytest
 
-from spongecake import fit
-from test_pipeline import BASE, BINARY, DATASET
+from test_pipeline import BINARY, run, tiny_dir
 
-SCRIPTS = os.path.dirname(os.path.dirname(os.path.abspath(fit.__file__)))
 MATERIALS = """
 [dataset]
 experiment = "base.toml"
@@ -48,17 +43,12 @@ figure = "Fig. X"
 
 
 def stage(*args):
-    return subprocess.run([sys.executable, os.path.join(SCRIPTS, "spongecake", "stage.py"), *map(str, args)],
-                          capture_output=True, text=True, env=dict(os.environ, PYTHONPATH=SCRIPTS))
+    return run("stage.py", *map(str, args))
 
 
 @pytest.fixture(scope="module")
 def tiny_stage(tmp_path_factory):
-    if not BINARY:
-        pytest.skip("needs MCREF_BINARY (ctest sets it)")
-    d = tmp_path_factory.mktemp("stage")
-    (d / "base.toml").write_text(BASE)
-    (d / "tiny.toml").write_text(DATASET)
+    d = tiny_dir(tmp_path_factory, "stage")
     (d / "materials.toml").write_text(MATERIALS)
     (d / "stage.toml").write_text(STAGE.format(epochs=3))
     p = stage(d / "stage.toml", d / "out", "--mcref", BINARY, "--threads", 2, "--jobs", 2, "--quiet")
