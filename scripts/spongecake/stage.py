@@ -17,7 +17,7 @@ A step is skipped when its output is up to date: `mcref dataset` itself keeps a 
 that holds the same dataset from the same simulation fingerprint (a stale one is
 removed and simulated again); a Python step is skipped when OUTDIR/stage.json records
 it with the same key (the SHA-256 of its command line, of its input files and of the
-scripts/spongecake/*.py sources) and its outputs are unchanged. Steps 2-4 run as
+scripts/spongecake/*.py sources but this one) and its outputs are unchanged. Steps 2-4 run as
 separate processes, --jobs at once (one torch thread each, so the results do not
 depend on it). summary.json is removed first and written last, so a failed stage
 leaves none. Progress lines go to stderr unless --quiet; one summary line at the end.
@@ -35,6 +35,7 @@ import resource
 import shutil
 import subprocess
 import sys
+import tempfile
 import time
 import tomllib
 
@@ -120,9 +121,11 @@ def sha256_file(path):
 
 
 def code_hash():
+    """The scripts a step runs and what they import: scripts/spongecake/*.py but this one
+    (its command lines are in the keys)."""
     h = hashlib.sha256()
     for name in sorted(os.listdir(HERE)):
-        if name.endswith(".py"):
+        if name.endswith(".py") and name != "stage.py":
             h.update(name.encode())
             with open(os.path.join(HERE, name), "rb") as f:
                 h.update(f.read())
@@ -150,19 +153,20 @@ class Stage:
 
     def run(self, label, cmd):
         """Runs cmd; returns its stdout; raises StageError with its last stderr line on failure.
-        Records wall and CPU seconds (of the child) under label."""
-        start, cpu = time.monotonic(), resource.getrusage(resource.RUSAGE_CHILDREN)
-        p = subprocess.run(cmd, capture_output=True, text=True)
-        wall = time.monotonic() - start
-        used = resource.getrusage(resource.RUSAGE_CHILDREN)
-        # RUSAGE_CHILDREN is per process, so concurrent steps share it: the CPU time of a
-        # step is exact only when it ran alone; the stage's total (summary) is exact.
-        self.times[label] = {"wall_s": round(wall, 1), "cpu_s": round(used.ru_utime + used.ru_stime - cpu.ru_utime -
-                                                                       cpu.ru_stime, 1)}
+        Records its wall and CPU seconds (its own rusage, os.wait4) under label."""
+        start = time.monotonic()
+        with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
+            p = subprocess.Popen(cmd, stdout=out, stderr=err, text=True)
+            _, status, used = os.wait4(p.pid, 0)
+            p.returncode = os.waitstatus_to_exitcode(status)
+            out.seek(0)
+            err.seek(0)
+            stdout, stderr = out.read(), err.read()
+        self.times[label] = {"wall_s": round(time.monotonic() - start, 1), "cpu_s": round(used.ru_utime + used.ru_stime, 1)}
         if p.returncode != 0:
-            last = (p.stderr.strip().splitlines() or [f"exit {p.returncode}"])[-1]
+            last = (stderr.strip().splitlines() or [f"exit {p.returncode}"])[-1]
             raise StageError(f"{label}: {last}")
-        return p.stdout
+        return stdout
 
     def dataset(self, name, toml):
         """Step 1: the dataset file (mcref's own up-to-date check; a stale file is simulated again)."""
