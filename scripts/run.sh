@@ -2,7 +2,7 @@
 # Runs the default validation suite: tables and results.json under out/, then
 # SpongeCake's multiple-scattering approximation at reduced scale (datasets, fits,
 # networks, figures and summary.json under out/spongecake/; scripts/spongecake/stage.py,
-# validate/datasets/spongecake_stage.toml; steps up to date are skipped), then the
+# validate/spongecake_stage.toml; steps up to date are skipped), then the
 # plots and out/report.html rendered from them (scripts/plot_validation.py,
 # scripts/report.py; either can be rerun alone, without simulating).
 # Extra arguments go to `mcref validate` (e.g. --quiet, --threads 2, --case 'fig9_*');
@@ -23,7 +23,7 @@ if [ "$status" -le 1 ]; then  # 0: all pass, 1: some check failed; 2: bad input,
     esac
   done
   if [ "$run_stage" = 1 ]; then
-    /usr/bin/python3 scripts/spongecake/stage.py validate/datasets/spongecake_stage.toml out/spongecake \
+    /usr/bin/python3 scripts/spongecake/stage.py validate/spongecake_stage.toml out/spongecake \
       --mcref build/mcref "${stage[@]}" "${quiet[@]}" || status=$?
   fi
   /usr/bin/python3 scripts/plot_validation.py out "${quiet[@]}"

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The SpongeCake stage of scripts/run.sh: SpongeCake's multiple-scattering
 approximation (Wang et al. 2022, Sec. 5) end to end at the scale a stage file
-gives (validate/datasets/spongecake_stage.toml), into OUTDIR:
+gives (validate/spongecake_stage.toml), into OUTDIR:
 
   1. the datasets (`mcref dataset ... --lean`), one per [[network]] and [[materials]];
   2. per-material fits (fit_dataset.py): a network's held-out entries (index % 10 == 9)
@@ -260,7 +260,7 @@ def distributions(rows):
 
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("stage", help="stage file (validate/datasets/spongecake_stage.toml)")
+    p.add_argument("stage", help="stage file (validate/spongecake_stage.toml)")
     p.add_argument("out", help="output directory (created if its parent exists)")
     p.add_argument("--mcref", required=True, help="the mcref binary")
     p.add_argument("--threads", type=int, default=os.cpu_count() or 1, help="threads of mcref dataset")
