@@ -5,8 +5,11 @@ Reads OUTDIR/results.json (written by `mcref validate`), the plots present
 under OUTDIR/plots/ (scripts/plot_validation.py) and the list of the papers'
 figures no case reproduces (validate/figures_not_reproduced.toml). The page:
 headline counts, one summary row per model (scripts/model_summary.py) with the
-per-check table behind it, the figure index (paper figure -> cases -> plots,
-and the figures not reproduced), then one section per case.
+per-check table behind it, SpongeCake's multiple-scattering approximation when
+OUTDIR/spongecake/summary.json exists (scripts/spongecake/stage.py: its scale, one
+number per material and method, the distributions and the figures), the figure index
+(paper figure -> cases -> plots, and the figures not reproduced), then one section
+per case.
 Needs Debian's python3-jinja2 (scripts/setup.sh).
 
 usage: /usr/bin/python3 scripts/report.py OUTDIR [--quiet]
@@ -108,6 +111,31 @@ def load_not_reproduced(path):
     return rows
 
 
+SPONGECAKE_FORMAT = "mcref-spongecake-summary"
+SPONGECAKE_METHODS = (("network", "network"), ("fit", "per-material fit"), ("lambert", "Lambertian alone"),
+                      ("none", "no MS term"), ("noise", "noise level"), ("sscheck", "order-1 check"))
+
+
+def load_spongecake(out_dir):
+    """OUTDIR/spongecake/summary.json (scripts/spongecake/stage.py), or None if there is none."""
+    path = os.path.join(out_dir, "spongecake", "summary.json")
+    if not os.path.exists(path):
+        return None
+    try:
+        with open(path) as f:
+            summary = json.load(f)
+    except (OSError, json.JSONDecodeError) as e:
+        fail(f"{path}: {e}")
+    if summary.get("format") != SPONGECAKE_FORMAT or summary.get("format_version") != 1:
+        fail(f"{path}: format {summary.get('format')!r} version {summary.get('format_version')!r} "
+             f"(expected {SPONGECAKE_FORMAT!r} version 1)")
+    for i, s in enumerate(summary.get("sets", [])):
+        for key in ("name", "kind", "scale", "rows", "distribution", "figures"):
+            if key not in s:
+                fail(f"{path}: sets.{i}.{key} is missing")
+    return summary
+
+
 def render(out_dir, not_reproduced_path=NOT_REPRODUCED):
     """The report page for OUTDIR, as a string."""
     path = os.path.join(out_dir, "results.json")
@@ -142,7 +170,8 @@ def render(out_dir, not_reproduced_path=NOT_REPRODUCED):
     return env.get_template(TEMPLATE).render(
         results=results, cases=cases, checks=checks, models=models, counts=status_counts(checks),
         statuses=STATUSES, plots=plots, index=figure_index(cases, plots, plot_files),
-        not_reproduced=load_not_reproduced(not_reproduced_path))
+        not_reproduced=load_not_reproduced(not_reproduced_path), spongecake=load_spongecake(out_dir),
+        spongecake_methods=SPONGECAKE_METHODS)
 
 
 def main(argv):

@@ -1,16 +1,31 @@
 #!/usr/bin/env bash
 # Runs the default validation suite: tables and results.json under out/, then
-# the plots and out/report.html rendered from them (scripts/plot_validation.py,
+# SpongeCake's multiple-scattering approximation at reduced scale (datasets, fits,
+# networks, figures and summary.json under out/spongecake/; scripts/spongecake/stage.py,
+# validate/spongecake_stage.toml; steps up to date are skipped), then the
+# plots and out/report.html rendered from them (scripts/plot_validation.py,
 # scripts/report.py; either can be rerun alone, without simulating).
-# Extra arguments go to `mcref validate` (e.g. --quiet, --threads 2, --case 'fig9_*').
+# Extra arguments go to `mcref validate` (e.g. --quiet, --threads 2, --case 'fig9_*');
+# --quiet and --threads go to the SpongeCake stage too, and --case leaves it out.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh --target mcref
 status=0
 ./build/mcref validate validate/suites/default.toml -o out "$@" || status=$?
 if [ "$status" -le 1 ]; then  # 0: all pass, 1: some check failed; 2: bad input, nothing written
-  quiet=()
-  for a in "$@"; do case "$a" in --quiet | -q) quiet=(--quiet) ;; esac; done
+  quiet=() stage=(--jobs 2) run_stage=1
+  args=("$@")
+  for ((k = 0; k < ${#args[@]}; k++)); do
+    case "${args[k]}" in
+      --quiet | -q) quiet=(--quiet) ;;
+      --threads) stage+=(--threads "${args[k + 1]:-}") ;;
+      --case) run_stage=0 ;;
+    esac
+  done
+  if [ "$run_stage" = 1 ]; then
+    /usr/bin/python3 scripts/spongecake/stage.py validate/spongecake_stage.toml out/spongecake \
+      --mcref build/mcref "${stage[@]}" "${quiet[@]}" || status=$?
+  fi
   /usr/bin/python3 scripts/plot_validation.py out "${quiet[@]}"
   /usr/bin/python3 scripts/report.py out "${quiet[@]}"
 fi

@@ -121,15 +121,41 @@ def cell_directions(theta_i, phi_i, theta_o_edges, phi_edges):
     return wi.reshape(-1, 3), wo.reshape(-1, 3)
 
 
+def _open_entry(f, path, index):
+    where = f"{path}: entry {index}"
+    if f"entries/{index}" not in f:
+        raise ValueError(f"{where}: no such entry")
+    entry = f[f"entries/{index}"]
+    config = entry.attrs["config"]
+    return entry, layers_from_config(config.decode() if isinstance(config, bytes) else config, where), where
+
+
+def check_entry(path, index):
+    """(layers, wi, wo, has_total) of an entry, reading its config and axes but no table values:
+    the checks of read_material (layers, tables present, axes), cheaply, before any work."""
+    with h5py.File(path, "r") as f:
+        entry, layers, where = _open_entry(f, path, index)
+        names, wis, wos, has_total = set(entry.keys()), [], [], True
+        for base in HEMISPHERES:
+            orders = [f"{base}_order2", f"{base}_order3", f"{base}_order4plus"]
+            if all(n in names for n in orders):
+                group = entry[orders[0]]
+            elif base in names and f"{base}_order1_volume" in names:
+                group = entry[base]
+            else:
+                raise ValueError(f"{where}: needs tables {', '.join(orders)} or {base} and {base}_order1_volume "
+                                 f"(the dataset's `tables`); it has {sorted(names)}")
+            has_total = has_total and base in names
+            wi, wo = _directions(group)
+            wis.append(wi)
+            wos.append(wo)
+    return layers, np.concatenate(wis), np.concatenate(wos), has_total
+
+
 def read_material(path, index):
     """Entry `index` of the dataset file as a fit.Material (every cell of reflection and transmission)."""
-    where = f"{path}: entry {index}"
     with h5py.File(path, "r") as f:
-        if f"entries/{index}" not in f:
-            raise ValueError(f"{where}: no such entry")
-        entry = f[f"entries/{index}"]
-        config = entry.attrs["config"]
-        layers = layers_from_config(config.decode() if isinstance(config, bytes) else config, where)
+        entry, layers, where = _open_entry(f, path, index)
         wis, wos, mss, ses, totals = [], [], [], [], []
         for base in HEMISPHERES:
             ms, se, total, group = _multiple_scattering(entry, base, where)
@@ -142,6 +168,23 @@ def read_material(path, index):
     cat = lambda xs: torch.as_tensor(np.concatenate(xs), dtype=tm.DTYPE)  # noqa: E731
     return Material(layers, cat(wis), cat(wos), cat(mss), None if any(t is None for t in totals) else cat(totals),
                     cat(ses))
+
+
+class EntryStore:
+    """The multiple-scattering part ms of a dataset's entries (rows: positions in `indices`),
+    held in memory (stream=False: every entry read once, ms stacked as (N, cells, 3)) or read
+    from the file on each request (stream=True: memory of the requested rows' cells plus one
+    entry while it is read). Both give the same values."""
+
+    def __init__(self, path, indices, stream=False):
+        self.path, self.indices, self.stream = path, list(indices), stream
+        self.held = None if stream else torch.stack([read_material(path, i).ms for i in self.indices])
+
+    def ms(self, rows, cells=slice(None)):
+        """ms of the given rows at the given cells (an index tensor or a slice), (len(rows), cells, 3)."""
+        if self.held is not None:
+            return self.held[rows][:, cells]
+        return torch.stack([read_material(self.path, self.indices[r]).ms[cells] for r in rows])
 
 
 def provenance(path):

@@ -18,12 +18,21 @@ reduced dataset allows, for held-out entries of a trained network (train.py):
                        mean albedo and against total thickness: network, fit, Lambertian
                        lobe alone, and the noise level.
 The entries shown are the held-out entries at the median, the 90th percentile and
-the maximum of the network's error. It also prints the held-out error distribution
-(errors.report) of the network, the fit, the Lambertian lobe alone and no term.
+the maximum of the network's error (--show all: every one). It also prints the
+held-out error distribution (errors.report) of the network, the fit, the Lambertian
+lobe alone and no term.
+
+--unseen: DATA.h5 is not the network's dataset (e.g. the paper's own materials,
+validate/datasets/spongecake_paper_*.toml): every fitted entry is unseen by the
+network and is used. --summary PATH writes the per-entry rows (errors.entry_row:
+one number per method) and the figures' file names as JSON (scripts/spongecake/stage.py
+gathers them for the report).
 
   /usr/bin/python3 scripts/spongecake/figures.py DATA.h5 FITS.h5 NET.h5 -o OUTDIR [--prefix NAME]
+      [--unseen] [--show quantiles|all] [--summary PATH]
 """
 import argparse
+import json
 import os
 import sys
 
@@ -65,10 +74,14 @@ def predictions(path, index, material, fits, net, split):
     return fitted.numpy(), predicted.numpy()
 
 
+def stack_text(layers):
+    """The layers, top first: flake type, alpha, T, mean albedo."""
+    return " / ".join(f"{'fiber' if l.fiber else 'surface'} a={l.alpha:.2f} T={l.thickness:.2f} g={np.mean(l.albedo):.2f}"
+                      for l in layers)
+
+
 def describe(material, index):
-    return f"entry {index}: " + " / ".join(
-        f"{'fiber' if l.fiber else 'surface'} a={l.alpha:.2f} T={l.thickness:.2f} g={np.mean(l.albedo):.2f}"
-        for l in material.layers)
+    return f"entry {index}: {stack_text(material.layers)}"
 
 
 def bsdf_figure(out, shown, shape):
@@ -149,6 +162,10 @@ def main(argv=None):
     p.add_argument("weights")
     p.add_argument("-o", "--output", required=True, help="output directory (exists)")
     p.add_argument("--prefix", default="spongecake")
+    p.add_argument("--unseen", action="store_true", help="DATA.h5 is not the network's dataset: use every fitted entry")
+    p.add_argument("--show", choices=("quantiles", "all"), default="quantiles",
+                   help="entries drawn: the median, 90th percentile and worst of the network's error, or all")
+    p.add_argument("--summary", help="JSON file to write: per-entry errors and the figures' names")
     a = p.parse_args(argv)
     try:
         if not os.path.isdir(a.output):
@@ -156,22 +173,30 @@ def main(argv=None):
         net, attrs = network.load(a.weights)
         fits, fattrs = fit_dataset.read(a.fits)
         sha = dataset.provenance(a.data)["dataset_sha256"]
-        if attrs.get("dataset_sha256") != sha or fattrs.get("dataset_sha256") != sha:
-            raise ValueError(f"{a.data}: the fits and the weights must come from this dataset (dataset_sha256)")
-        with h5py.File(a.weights, "r") as f:
-            held = [int(i) for i in f["validation_index"][:] if int(i) in set(int(j) for j in fits["index"])]
+        if fattrs.get("dataset_sha256") != sha:
+            raise ValueError(f"{a.fits}: the fits must come from {a.data} (dataset_sha256 differs)")
+        if a.unseen:
+            if attrs.get("dataset_sha256") == sha:
+                raise ValueError(f"--unseen: {a.data} is the network's own dataset; leave --unseen out")
+            held = [int(j) for j in fits["index"]]
+        else:
+            if attrs.get("dataset_sha256") != sha:
+                raise ValueError(f"{a.weights}: the weights must come from {a.data} (dataset_sha256), or give --unseen")
+            with h5py.File(a.weights, "r") as f:
+                held = [int(i) for i in f["validation_index"][:] if int(i) in set(int(j) for j in fits["index"])]
         if not held:
             raise ValueError(f"{a.fits}: fits none of the network's held-out entries")
+        if int(fattrs.get("layers", net.n_layers)) != net.n_layers:
+            raise ValueError(f"{a.fits}: stacks of {fattrs['layers']} layers; the network of {a.weights} takes {net.n_layers}")
     except (OSError, KeyError, ValueError) as e:
         print(f"figures: {e}", file=sys.stderr)
         return 2
     split = tuple(float(v) for v in attrs["split"])
-    rows, cache = [], {}
+    rows = []  # one entry in memory at a time; the entries drawn are read again below
     for i in held:
         m = dataset.read_material(a.data, i)
         fitted, predicted = predictions(a.data, i, m, fits, net, split)
         ms, total = m.ms.numpy(), m.total.numpy()
-        cache[i] = (m, fitted, predicted)
         k = list(fits["index"]).index(i)
         rows.append(errors.entry_row(i, [l.fiber for l in m.layers], [l.alpha for l in m.layers], [l.albedo for l in m.layers],
                                      [l.thickness for l in m.layers],
@@ -179,7 +204,8 @@ def main(argv=None):
                                       "lambert": float(fits["lambertian_loss"][k])},
                                      float(np.mean(np.abs(ms))), float(np.mean(np.abs(total))), float(fits["noise_mae"][k]),
                                      errors.single_scattering_check(m)))
-    print(f"held-out entries with a fit ({len(rows)}):")
+        rows[-1]["stack"] = stack_text(m.layers)
+    print(f"{'unseen' if a.unseen else 'held-out'} entries with a fit ({len(rows)}):")
     print(errors.report(rows, ["network", "fit", "lambert", "none", "noise", "sscheck"], "ms"))
     print(errors.report(rows, ["network", "fit", "lambert", "none"], "total"))
     usable = sorted((r for r in rows if np.isfinite(r["network_ms"])), key=lambda r: r["network_ms"])
@@ -188,11 +214,14 @@ def main(argv=None):
         r = usable[min(len(usable) - 1, int(round(q * (len(usable) - 1))))]
         if r["entry"] not in [x["entry"] for x in picks]:
             picks.append(r)
+    if a.show == "all":
+        picks = [r for r in rows if np.isfinite(r["network_ms"])]
     shape, theta_i, _ = table_shape(a.data, held[0])
     k_theta = int(np.argmin(np.abs(np.degrees(theta_i) - 35)))
     bsdf, lobes = [], []
     for r in picks:
-        m, fitted, predicted = cache[r["entry"]]
+        m = dataset.read_material(a.data, r["entry"])
+        fitted, predicted = predictions(a.data, r["entry"], m, fits, net, split)
         title = f"{describe(m, r['entry'])}; network {100 * r['network_ms']:.0f} %, fit {100 * r['fit_ms']:.0f} %"
         bsdf.append((title, m.ms.numpy(), fitted, predicted))
         single = m.total.numpy() - m.ms.numpy()
@@ -201,8 +230,20 @@ def main(argv=None):
     bsdf_figure(base + "_bsdf.png", bsdf, shape)
     lobes_figure(base + "_lobes.png", lobes, shape, theta_i, k_theta)
     errors_figure(base + "_errors.png", rows, a.prefix)
-    print(f"figures: {base}_bsdf.png, {base}_lobes.png, {base}_errors.png ({len(held)} held-out entries)")
+    names = [f"{a.prefix}_{k}.png" for k in ("bsdf", "lobes", "errors")]
+    if a.summary:
+        write_summary(a.summary, rows, [r["entry"] for r in picks], names, a.unseen)
+    print(f"figures: {', '.join(os.path.join(a.output, n) for n in names)} ({len(held)} entries)")
     return 0
+
+
+def write_summary(path, rows, shown, names, unseen):
+    """--summary: the rows (NaN as null) and the figures, written whole then renamed."""
+    clean = [{k: (None if isinstance(v, float) and not np.isfinite(v) else v) for k, v in r.items()} for r in rows]
+    tmp = f"{path}.tmp.{os.getpid()}"
+    with open(tmp, "w") as f:
+        json.dump({"unseen": unseen, "rows": clean, "shown": shown, "figures": names}, f, indent=1)
+    os.replace(tmp, path)
 
 
 if __name__ == "__main__":

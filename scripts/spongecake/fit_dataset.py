@@ -135,19 +135,19 @@ def main(argv=None):
         missing = [i for i in entries if i not in available]
         if missing:
             raise ValueError(f"{a.data}: --entries {missing} not in the file (entries: {available[:10]}...)")
-        materials = [(i, dataset.read_material(a.data, i)) for i in entries]  # every entry checked first
-        counts = {len(m.layers) for _, m in materials}
+        headers = [dataset.check_entry(a.data, i) for i in entries]  # every entry checked first, no values read
+        counts = {len(layers) for layers, _, _, _ in headers}
         if len(counts) != 1:
             raise ValueError(f"{a.data}: entries with {sorted(counts)} layers; one fits file takes one layer count")
-        if any(m.total is None for _, m in materials):
+        if not all(has_total for _, _, _, has_total in headers):
             raise ValueError(f"{a.data}: needs the total tables brdf and brdf_btdf (the dataset's `tables`)")
         attrs = dataset.provenance(a.data)
     except (OSError, KeyError, ValueError) as e:
         print(f"fit_dataset: {e}", file=sys.stderr)
         return 2
     fits, entry_rows = [], []
-    for i, m in materials:
-        r = fit_entry(i, m, a.starts, a.seed, a.iterations, a.split)
+    for i in entries:  # one entry in memory at a time
+        r = fit_entry(i, dataset.read_material(a.data, i), a.starts, a.seed, a.iterations, a.split)
         fits.append(r)
         entry_rows.append(row(r))
         if not a.quiet:

@@ -12,12 +12,15 @@ Deterministic for a seed: torch.manual_seed(seed) (initial weights), a
 torch.Generator seeded with seed (shuffling, cell subsets), one torch thread.
 --cells K (not in the paper; default: every cell) evaluates each mini-batch on K
 random cells, an unbiased estimate of the same loss at a fraction of the cost; the
-validation loss always uses every cell. On sparse (noisy, sharp) tables the training
+validation loss always uses every cell. --stream (not in the paper) reads each
+mini-batch's entries from the file instead of holding the dataset in memory: the same
+results (tested), for datasets that do not fit (README, "SpongeCake's multiple-scattering
+approximation", Memory). On sparse (noisy, sharp) tables the training
 first sits at the empty-lobes loss (MAE = mean |ms|) for tens of epochs before it
 moves (validate/FINDINGS.md): give it hundreds of epochs.
 
   /usr/bin/python3 scripts/spongecake/train.py DATA.h5 -o NET.h5 [--epochs 50] [--seed 1]
-      [--lr 1e-3] [--batch 32] [--cells K] [--split R,T] [--fits FITS.h5] [--quiet]
+      [--lr 1e-3] [--batch 32] [--cells K] [--split R,T] [--fits FITS.h5] [--stream] [--quiet]
 --fits: a fit_dataset.py file of the same dataset, for the floor on the held-out entries.
 """
 import argparse
@@ -38,19 +41,31 @@ def is_validation(index):
     return index % 10 == 9
 
 
-def load_dataset(path):
-    """(indices, stacks, wi, wo, ms (N, cells, 3), materials) of every entry; the entries must
-    share one layer count and one set of cells."""
+def load_dataset(path, stream=False):
+    """(indices, stacks, wi, wo, ms) of every entry, ms a dataset.EntryStore (held in memory,
+    or read per request with stream=True). Every entry is checked first (dataset.check_entry):
+    one layer count, one set of cells, the total tables present."""
     indices = dataset.entry_indices(path)
-    materials = [dataset.read_material(path, i) for i in indices]
-    counts = {len(m.layers) for m in materials}
-    if len(counts) != 1:
-        raise ValueError(f"{path}: entries with {sorted(counts)} layers; one network takes one layer count")
-    wi, wo = materials[0].wi, materials[0].wo
-    for i, m in zip(indices, materials):
-        if not (torch.equal(m.wi, wi) and torch.equal(m.wo, wo)):
+    stacks, wi, wo = [], None, None
+    for i in indices:
+        layers, e_wi, e_wo, has_total = dataset.check_entry(path, i)
+        if not has_total:
+            raise ValueError(f"{path}: entry {i}: needs the total tables brdf and brdf_btdf (the dataset's `tables`)")
+        if stacks and len(layers) != len(stacks[0]):
+            raise ValueError(f"{path}: entries with {len(stacks[0])} and {len(layers)} layers; one network takes "
+                             "one layer count")
+        if wi is None:
+            wi, wo = e_wi, e_wo
+        elif not (np.array_equal(e_wi, wi) and np.array_equal(e_wo, wo)):
             raise ValueError(f"{path}: entry {i} has other directions than entry {indices[0]}")
-    return indices, [m.layers for m in materials], wi, wo, torch.stack([m.ms for m in materials]), materials
+        stacks.append(layers)
+    return (indices, stacks, torch.as_tensor(wi, dtype=tm.DTYPE), torch.as_tensor(wo, dtype=tm.DTYPE),
+            dataset.EntryStore(path, indices, stream))
+
+
+def _ms(ms, rows, cells=slice(None)):
+    """ms (a (N, cells, 3) tensor or a dataset.EntryStore) of the given rows and cells."""
+    return ms[rows][:, cells] if isinstance(ms, torch.Tensor) else ms.ms(rows, cells)
 
 
 def batch_loss(net, stacks, wi, wo, ms, split):
@@ -79,7 +94,7 @@ def train(stacks, wi, wo, ms, train_rows, val_rows, epochs, seed, lr=1e-3, batch
         for b in range(0, len(order), batch):
             rows = order[b:b + batch]
             c = slice(None) if cells is None else torch.randperm(wi.shape[0], generator=g)[:cells]
-            loss = batch_loss(net, [stacks[i] for i in rows], wi[c], wo[c], ms[rows][:, c], split).mean()
+            loss = batch_loss(net, [stacks[i] for i in rows], wi[c], wo[c], _ms(ms, rows, c), split).mean()
             opt.zero_grad()
             loss.backward()
             opt.step()
@@ -92,16 +107,17 @@ def train(stacks, wi, wo, ms, train_rows, val_rows, epochs, seed, lr=1e-3, batch
     return net, history
 
 
-def evaluate(net, stacks, wi, wo, ms, rows, split=(1.0, 1.0), chunk=32):
-    """Per-entry MAE of the network's lobes on the given rows, every cell."""
+def evaluate(net, stacks, wi, wo, ms, rows, split=(1.0, 1.0), chunk=1):
+    """Per-entry MAE of the network's lobes on the given rows, every cell, `chunk` entries at
+    a time (1: the memory of one entry's cells, 2.1 M at the paper's 32 x 32)."""
     with torch.no_grad():
-        return torch.cat([batch_loss(net, [stacks[i] for i in rows[b:b + chunk]], wi, wo, ms[rows[b:b + chunk]], split)
+        return torch.cat([batch_loss(net, [stacks[i] for i in rows[b:b + chunk]], wi, wo, _ms(ms, rows[b:b + chunk]), split)
                           for b in range(0, len(rows), chunk)])
 
 
-def held_out_rows(indices, materials, losses, val_rows, fits_path, attrs, split):
-    """errors.entry_row per held-out entry: the network, the per-material fit (when a fits
-    file of the same dataset is given), the Lambertian lobe alone."""
+def held_out_rows(path, indices, losses, val_rows, fits_path, attrs, split):
+    """errors.entry_row per held-out entry (read one at a time): the network, the per-material
+    fit (when a fits file of the same dataset is given), the Lambertian lobe alone."""
     floor = {}
     if fits_path:
         d, fattrs = fit_dataset.read(fits_path)
@@ -110,7 +126,8 @@ def held_out_rows(indices, materials, losses, val_rows, fits_path, attrs, split)
         floor = dict(zip((int(i) for i in d["index"]), d["loss"]))
     out = []
     for r, loss in zip(val_rows, losses):
-        m, i = materials[r], indices[r]
+        i = indices[r]
+        m = dataset.read_material(path, i)
         ms_mean = float(torch.mean(torch.abs(m.ms)))
         named = {"network": float(loss), "lambert": errors.lambertian_alone(m, split)[0]}
         if i in floor:
@@ -134,6 +151,7 @@ def main(argv=None):
     p.add_argument("--cells", type=int, help="random cells per mini-batch (default: every cell)")
     p.add_argument("--split", type=fit.parse_split, default=(1.0, 1.0), help="Lambertian split R,T (default 1,1)")
     p.add_argument("--fits", help="fit_dataset.py file of the same dataset (the floor on the held-out entries)")
+    p.add_argument("--stream", action="store_true", help="read mini-batches from the file (less memory, same results)")
     p.add_argument("-q", "--quiet", action="store_true")
     a = p.parse_args(argv)
     try:
@@ -147,9 +165,7 @@ def main(argv=None):
             raise ValueError(f"-o {a.output}: directory {out_dir} does not exist")
         if os.path.abspath(a.output) == os.path.abspath(a.data):
             raise ValueError(f"-o {a.output}: is the dataset itself")
-        indices, stacks, wi, wo, ms, materials = load_dataset(a.data)
-        if any(m.total is None for m in materials):
-            raise ValueError(f"{a.data}: needs the total tables brdf and brdf_btdf (the dataset's `tables`)")
+        indices, stacks, wi, wo, ms = load_dataset(a.data, a.stream)
         attrs = dataset.provenance(a.data)
         if a.fits:
             fit_dataset.read(a.fits)
@@ -167,7 +183,7 @@ def main(argv=None):
                   "script": "scripts/spongecake/train.py"})
     network.save(a.output, net, attrs, history, [indices[r] for r in val_rows])
     if val_rows:
-        rows = held_out_rows(indices, materials, evaluate(net, stacks, wi, wo, ms, val_rows, a.split), val_rows,
+        rows = held_out_rows(a.data, indices, evaluate(net, stacks, wi, wo, ms, val_rows, a.split), val_rows,
                              a.fits, attrs, a.split)
         methods = ["network"] + (["fit"] if all("fit_ms" in r for r in rows) else []) + ["lambert", "none"]
         print(f"held-out entries ({len(val_rows)}):")

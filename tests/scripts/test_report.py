@@ -209,3 +209,87 @@ def test_chromium_probe_sees_errors(copy_of, tmp_path):
     problems = browser_problems(copy_of, tmp_path, text)
     assert f"image not shown: plots/{broken}" in problems
     assert any(p.startswith("error:") and "undefined_function" in p for p in problems)
+
+
+# SpongeCake's section (scripts/spongecake/stage.py writes OUTDIR/spongecake/summary.json):
+# a fixture of two sets, one with a NaN-free row and one whose ms table is empty (nulls).
+def spongecake_fixture(out, png_source):
+    row = {"entry": 9, "type": "fiber", "alpha": 0.3, "albedo": 0.5, "thickness": 2.0, "mean_abs_ms": 0.01,
+           "network_ms": 0.791, "fit_ms": 0.623, "lambert_ms": 0.995, "none_ms": 1.0, "noise_ms": 0.17,
+           "sscheck_ms": 0.12, "network_total": 0.107, "fit_total": 0.071, "lambert_total": 0.15, "none_total": 0.156,
+           "sscheck_total": 0.12, "stack": "fiber a=0.30 T=2.00 g=0.50", "label": ""}
+    empty = dict(row, entry=3, mean_abs_ms=0.0, network_ms=None, fit_ms=None, lambert_ms=None, noise_ms=None,
+                 label="Fig. 7's stack", stack="surface a=0.50 T=0.50 g=0.90 / surface a=0.90 T=2.00 g=0.90")
+    dist = lambda v: {"ms": [v, v, v], "total": [v / 10, v / 10, v / 10]}  # noqa: E731
+    distribution = {m: dist(v) for m, v in (("network", 0.791), ("fit", 0.623), ("lambert", 0.995), ("none", 1.0))}
+    distribution.update(noise={"ms": [0.17, 0.17, 0.17]}, sscheck={"ms": [None, None, None]})
+    scale = {"entries": 300, "incident_directions": [8, 8], "outgoing_bins": [8, 8], "paths_per_direction": 40000,
+             "max_order": 20, "fitted_entries": 30, "fit_starts": 3, "fit_iterations": 10, "network_dataset": "sc1.h5",
+             "epochs": 617, "cells_per_batch": 1024, "batch": 32, "lr": 0.001, "train_entries": 270, "seed": 1}
+    sets = [{"name": "one_layer", "kind": "network", "network": "one_layer", "layers": 1, "figure": "",
+             "dataset": "validate/datasets/spongecake_1layer_reduced.toml", "scale": scale, "rows": [row],
+             "distribution": distribution, "figures": ["one_layer_bsdf.png"]},
+            {"name": "paper_two_layers", "kind": "materials", "network": "two_layers", "layers": 2,
+             "figure": "SpongeCake Figs. 11-13", "dataset": "validate/datasets/spongecake_paper_2layer.toml",
+             "scale": dict(scale, entries=7), "rows": [empty], "distribution": distribution,
+             "figures": ["paper_two_layers_bsdf.png"]}]
+    os.makedirs(os.path.join(out, "spongecake"))
+    for s in sets:
+        shutil.copy(png_source, os.path.join(out, "spongecake", s["figures"][0]))
+    summary = {"format": "mcref-spongecake-summary", "format_version": 1, "stage": "stage.toml", "seed": 1,
+               "wall_s": 612.0, "cpu_s": 1100.0, "steps": {}, "sets": sets}
+    with open(os.path.join(out, "spongecake", "summary.json"), "w") as f:
+        json.dump(summary, f)
+    return summary
+
+
+def test_spongecake_section_renders_the_summary(copy_of, tmp_path):
+    assert 'id="spongecake"' not in page(copy_of)  # no summary, no section
+    plots = os.path.join(copy_of, "plots")
+    spongecake_fixture(copy_of, os.path.join(plots, sorted(os.listdir(plots))[0]))
+    text = render(copy_of)
+    section = text.split('id="spongecake"')[1].split('id="figures"')[0]
+    flat = re.sub(r"\s+", " ", html.unescape(re.sub(r"<[^>]+>", " ", section)))
+    # the scale it ran at
+    assert "300 entries, 8 × 8 incident directions" in flat and "40000 paths per direction" in flat
+    assert "617 epochs" in flat and "270 training entries" in flat and "1024 cells per batch" in flat
+    # one row per entry, one number per method; nulls shown as a dash
+    one = section.split('id="spongecake-one_layer"')[1].split('id="spongecake-paper_two_layers"')[0]
+    rows = re.findall(r"<tr><td class=\"num\">(\d+)</td>(.*?)</tr>", one, re.S)
+    assert [r[0] for r in rows] == ["9"]
+    cells = re.findall(r'<td class="num">([^<]*)</td>', rows[0][1])
+    assert cells == ["79.1 %", "62.3 %", "99.5 %", "100.0 %", "17.0 %", "12.0 %", "10.7 %", "15.6 %"]
+    two = section.split('id="spongecake-paper_two_layers"')[1]
+    assert "Fig. 7's stack" in html.unescape(two) and "never saw" in two and "Figs. 11-13" in two
+    assert re.findall(r'<td class="num">([^<]*)</td>', two.split("Fig. 7")[1].split("</tr>")[0])[:2] == ["–", "–"]
+    # the distribution table and the figures
+    assert "<td>network</td><td class=\"num\">79.1 %</td>" in one and "<td>noise level</td>" in one
+    for name in ("one_layer_bsdf.png", "paper_two_layers_bsdf.png"):
+        assert f'<img src="spongecake/{name}"' in section
+    assert browser_problems(copy_of, tmp_path) == []  # the images load from spongecake/
+
+
+def test_spongecake_summary_of_another_format_is_refused(copy_of):
+    os.makedirs(os.path.join(copy_of, "spongecake"))
+    with open(os.path.join(copy_of, "spongecake", "summary.json"), "w") as f:
+        json.dump({"format": "something-else", "sets": []}, f)
+    before = page(copy_of)
+    code, _, err = run(PYTHON, os.path.join(SCRIPTS, "report.py"), copy_of, "--quiet")
+    assert code != 0 and "summary.json" in err and "something-else" in err and len(err.strip().splitlines()) == 1
+    assert page(copy_of) == before  # the old page is kept
+
+
+def test_status_table_has_the_spongecake_block(copy_of):
+    code, out, err = run(PYTHON, os.path.join(SCRIPTS, "status_table.py"), copy_of)
+    assert code == 0 and "SpongeCake" not in out, err
+    plots = os.path.join(copy_of, "plots")
+    spongecake_fixture(copy_of, os.path.join(plots, sorted(os.listdir(plots))[0]))
+    code, out, err = run(PYTHON, os.path.join(SCRIPTS, "status_table.py"), copy_of)
+    assert code == 0, err
+    rows = [l for l in out.splitlines() if l.startswith("| `one_layer`") or l.startswith("| `paper_two_layers`")]
+    assert len(rows) == 2
+    assert "| 1 | 300 entries, 8×8 dir., 8×8 bins, 4e+04 paths, 617 epochs | 1 held out | 79 % (79 %) | 62 % (62 %) |" \
+        in rows[0]
+    # network, fit, Lambertian, noise (of ms), then network and no term of the BSDF; median (90th percentile)
+    assert rows[0].endswith("| 17 % (17 %) | 8 % (8 %) | 10 % (10 %) |"), rows[0]
+    assert "unseen (SpongeCake Figs. 11-13)" in rows[1]

@@ -64,13 +64,19 @@ def run(script, *args):
                           text=True, env=env)
 
 
-@pytest.fixture(scope="module")
-def tiny(tmp_path_factory):
+def tiny_dir(tmp_path_factory, name):
+    """A new directory holding base.toml and tiny.toml (BASE, DATASET); skips without MCREF_BINARY."""
     if not BINARY:
         pytest.skip("needs MCREF_BINARY (ctest sets it)")
-    d = tmp_path_factory.mktemp("tiny")
+    d = tmp_path_factory.mktemp(name)
     (d / "base.toml").write_text(BASE)
     (d / "tiny.toml").write_text(DATASET)
+    return d
+
+
+@pytest.fixture(scope="module")
+def tiny(tmp_path_factory):
+    d = tiny_dir(tmp_path_factory, "tiny")
     out = d / "tiny.h5"
     p = subprocess.run([BINARY, "dataset", str(d / "tiny.toml"), "-o", str(out), "--quiet", "--threads", "1"],
                        capture_output=True, text=True)
@@ -139,6 +145,20 @@ def test_train_cli(tiny):
     p2 = run("train.py", str(out), "-o", str(d / "net2.h5"), "--epochs", "3", "--seed", "2", "--quiet")
     with h5py.File(weights) as a, h5py.File(d / "net2.h5") as b:
         assert np.array_equal(a["linear3/weight"][:], b["linear3/weight"][:]) and p2.returncode == 0
+    # --stream (mini-batches read from the file) gives the same weights and histories as the
+    # dataset held in memory, with every cell and with random cells per batch
+    for extra in ([], ["--cells", "20"]):
+        paths = []
+        for stream in ([], ["--stream"]):
+            paths.append(d / f"net_{len(extra)}_{len(stream)}.h5")
+            p = run("train.py", str(out), "-o", str(paths[-1]), "--epochs", "3", "--seed", "2", "--quiet", *extra, *stream)
+            assert p.returncode == 0, p.stderr
+        with h5py.File(paths[0]) as a, h5py.File(paths[1]) as b:
+            names = []
+            a.visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Dataset) else None)
+            assert "history/val_loss" in names and "linear0/weight" in names
+            for n in names:
+                assert np.array_equal(a[n][()], b[n][()]), n
     # the figures of the held-out entry and the evaluation for new layer parameters
     p = run("figures.py", str(out), str(fits), str(weights), "-o", str(d), "--prefix", "tiny")
     assert p.returncode == 0, p.stderr
