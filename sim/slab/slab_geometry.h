@@ -70,6 +70,7 @@ struct SlabGeometry {
   SlabSubstrate substrate;
   bool delta_transmission = true;  // record the unscattered transmission (Sec. 4.5)
   bool wave_walk = false;          // the data-parallel walk (sim/slab/wave_walk.h)
+  bool next_event = false;         // the next-event estimator of the escapes (sim/slab/walk.h)
   SlabGrid grid;
   double total_thickness() const;
   // Every layer's albedo is 1 and its flake Fresnel is 1, substrate none or a

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "sim/slab/escape.h"
 #include "sim/slab/substrate.h"
 
 namespace mcref::volume {
@@ -22,11 +23,11 @@ int walk(const SlabMedium& medium, FreeFlight& flight, const WalkSettings& s, Ve
     const Flight f = flight.fly(p, rng);
     if (f == Flight::kLost) return order;
     if (f == Flight::kExitTop) {
-      out.add(p.d, order, first_class, weight, delta);
+      if (!s.next_event || order == 0) out.add(p.d, order, first_class, weight, delta);
       return order;
     }
     if (f == Flight::kExitBottom && !medium.has_substrate()) {
-      if (order > 0 || s.delta_transmission) out.add(p.d, order, first_class, weight, delta);
+      if (order > 0 ? !s.next_event : s.delta_transmission) out.add(p.d, order, first_class, weight, delta);
       return order;
     }
     // A scattering event: in a layer, or on the substrate.
@@ -47,6 +48,9 @@ int walk(const SlabMedium& medium, FreeFlight& flight, const WalkSettings& s, Ve
       p.d = sc.wo;
       delta = delta && sc.specular;
     }
+    if (s.next_event)  // before the roulette: its expectation is the same
+      if (const double e = escape_probability(medium, p.layer, p.depth, p.d); e > 0)
+        out.add(p.d, order, first_class, weight * e, delta);
     if (order >= s.roulette_from) {
       const double q = std::min(1.0, weight.max());
       if (q < 1) {
