@@ -15,8 +15,10 @@ estimators alternating, `--reps` times each. Per run it reads:
   total  the same for the total BRDF/BTDF;
 and prints, per entry and estimator, the medians over the repetitions of cpu,
 ms, total, ms^2 x cpu and total^2 x cpu, then the gain (analog's error^2 x time
-over the other's) per repetition pair: median and range. `paired` is the median
-over the cells both reach of analog's rse^2 x cpu over the other's (first pair).
+over the other's) per repetition pair: median and range. The medians are over
+different cells (an estimator that reaches more cells adds dim ones, whose errors
+are large), so `paired` is the fairer gain: per repetition pair, the median over
+the cells both reach of analog's rse^2 x cpu over the other's; median and range.
 
   tests/bench/estimator_efficiency.py build/mcref --entries 1:357 2:220 2:2279 2:4423 --reps 5
 """
@@ -42,7 +44,7 @@ def entry_config(mcref, work, layers, index):
     name, entries = DATASETS[layers]
     out = os.path.join(work, f"cfg{layers}_{index}.h5")
     subprocess.run([mcref, "dataset", os.path.join(work, name), "-o", out, "--shard", f"{index}/{entries // 2}",
-                    "--stop-after", "1", "--quiet"], check=True)
+                    "--stop-after", "1", "--quiet"], check=True, stderr=subprocess.DEVNULL)
     parts = out + ".parts"
     (part,) = [os.path.join(parts, f) for f in os.listdir(parts)]
     with h5py.File(part, "r") as f:
@@ -51,12 +53,14 @@ def entry_config(mcref, work, layers, index):
     return config.decode() if isinstance(config, bytes) else config
 
 
-def reduce_directions(config, stride_theta, stride_phi):
-    def keep(m, stride):
-        values = m.group(2).split(",")
-        return m.group(1) + "[" + ",".join(values[stride // 2::stride]) + "]"
-    config = re.sub(r"^(theta_i_deg = )\[(.*)\]$", lambda m: keep(m, stride_theta), config, flags=re.M)
-    return re.sub(r"^(phi_i_deg = )\[(.*)\]$", lambda m: keep(m, stride_phi), config, flags=re.M)
+def direction_settings(base, stride_theta, stride_phi):
+    """--set overrides: every stride-th incident elevation and azimuth of the base, its paths per direction."""
+    import tomllib
+    m = tomllib.loads(base)["measure"][0]
+    keep = lambda v, stride: "[" + ", ".join(repr(x) for x in v[stride // 2::stride]) + "]"
+    return ["--set", f"measure.0.theta_i_deg={keep(m['theta_i_deg'], stride_theta)}",
+            "--set", f"measure.0.phi_i_deg={keep(m['phi_i_deg'], stride_phi)}",
+            "--set", f"measure.0.samples={m['samples']}"]
 
 
 def errors(path):
@@ -71,6 +75,16 @@ def errors(path):
             tv, ts = f[hemi]["value"][()], f[hemi]["stderr"][()]
             total.append(np.where(tv > 0, ts / np.where(tv > 0, tv, 1), np.nan).ravel())
     return np.concatenate(ms), np.concatenate(total)
+
+
+def paired(cpu_a, rse_a, cpu_b, rse_b):
+    """Median over the cells both reach of (rse_a^2 cpu_a) / (rse_b^2 cpu_b)."""
+    both = np.isfinite(rse_a) & np.isfinite(rse_b) & (rse_a > 0) & (rse_b > 0)
+    return float(np.median(rse_a[both] ** 2 * cpu_a / (rse_b[both] ** 2 * cpu_b))) if both.any() else float("nan")
+
+
+def span(x):
+    return f"{statistics.median(x):.2f},{min(x):.2f}-{max(x):.2f}"
 
 
 def main():
@@ -88,43 +102,40 @@ def main():
         for name, _ in DATASETS.values():
             shutil.copy(os.path.join(src, name), work)
         base = open(os.path.join(src, "spongecake_base.toml")).read()
+        settings = direction_settings(base, args.stride_theta, args.stride_phi)
         open(os.path.join(work, "spongecake_base.toml"), "w").write(
             re.sub(r"^samples = \d+$", "samples = 1", base, flags=re.M))
         print(f"# directions: every {args.stride_theta}th theta_i, every {args.stride_phi}th phi_i; "
               f"{args.reps} alternating repetitions, 1 thread; error = median relative stderr")
         print("entry,estimator,cpu,ms_cells,ms,total,ms2_cpu,total2_cpu,gain_ms,gain_ms_range,gain_total,"
-              "gain_total_range,paired_ms,paired_total")
+              "gain_total_range,paired_ms,paired_ms_range,paired_total,paired_total_range")
         for spec in args.entries:
             layers, index = spec.split(":")
-            config = reduce_directions(entry_config(args.mcref, work, layers, int(index)), args.stride_theta,
-                                       args.stride_phi)
             exp = os.path.join(work, "entry.toml")
-            open(exp, "w").write(config)
+            open(exp, "w").write(entry_config(args.mcref, work, layers, int(index)))
             runs = {e: [] for e in args.estimators}
-            first = {}
+            cells = {e: [] for e in args.estimators}
             for rep in range(args.reps):
                 order = args.estimators if rep % 2 == 0 else args.estimators[::-1]
                 for est in order:
                     out = os.path.join(work, f"{est}.h5")
                     _, _, cpu = timed_run([args.mcref, "simulate", exp, "-o", out, "--threads", "1", "--quiet",
-                                           "--set", f"geometry.estimator=\"{est}\""])
+                                           "--set", f"geometry.estimator=\"{est}\""] + settings)
                     ms, total = errors(out)
                     runs[est].append((cpu, np.nanmedian(ms), np.nanmedian(total), int(np.sum(ms > 0))))
-                    first.setdefault(est, (cpu, ms, total))
+                    cells[est].append((cpu, ms, total))
             ref = runs[args.estimators[0]]
             for est in args.estimators:
                 r = runs[est]
                 med = lambda k: statistics.median(x[k] for x in r)
                 gain_ms = [(a[1] ** 2 * a[0]) / (b[1] ** 2 * b[0]) for a, b in zip(ref, r)]
                 gain_t = [(a[2] ** 2 * a[0]) / (b[2] ** 2 * b[0]) for a, b in zip(ref, r)]
-                (ca, ma, ta), (cb, mb, tb) = first[args.estimators[0]], first[est]
-                both_ms, both_t = np.isfinite(ma) & np.isfinite(mb) & (mb > 0), np.isfinite(ta) & np.isfinite(tb) & (tb > 0)
-                paired_ms = np.median(ma[both_ms] ** 2 * ca / (mb[both_ms] ** 2 * cb)) if both_ms.any() else np.nan
-                paired_t = np.median(ta[both_t] ** 2 * ca / (tb[both_t] ** 2 * cb)) if both_t.any() else np.nan
+                paired_ms = [paired(a[0], a[1], b[0], b[1]) for a, b in zip(cells[args.estimators[0]], cells[est])]
+                paired_t = [paired(a[0], a[2], b[0], b[2]) for a, b in zip(cells[args.estimators[0]], cells[est])]
                 print(f"{spec},{est},{med(0):.3f},{med(3)},{med(1):.4f},{med(2):.4f},{statistics.median(x[1] ** 2 * x[0] for x in r):.4f},"
                       f"{statistics.median(x[2] ** 2 * x[0] for x in r):.4f},{statistics.median(gain_ms):.2f},"
                       f"{min(gain_ms):.2f}-{max(gain_ms):.2f},{statistics.median(gain_t):.2f},"
-                      f"{min(gain_t):.2f}-{max(gain_t):.2f},{paired_ms:.2f},{paired_t:.2f}", flush=True)
+                      f"{min(gain_t):.2f}-{max(gain_t):.2f},{span(paired_ms)},{span(paired_t)}", flush=True)
     finally:
         shutil.rmtree(work)
 

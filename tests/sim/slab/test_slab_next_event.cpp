@@ -1,10 +1,10 @@
-// The next-event estimator of the slab walk ([geometry] estimator = "next_event",
-// sim/slab/walk.h) against the analog one on the same medium: two independent
+// The next-event estimators of the slab walk ([geometry] estimator = "next_event"
+// and "next_event_mis", sim/slab/walk.h) against the analog one on the same medium: two independent
 // simulations (seeds 51 and 52, 10 batches of 20 000 paths per incident
 // direction, 4 incident directions), every cell of the BRDF and BTDF (total and
 // per order), albedo and delta tables compared through the quadrature of both
 // standard errors (RGB): p >= alpha and the Sidak |z| bound at alpha, with
-// alpha = 0.01 / 71, 71 being the number of table comparisons below (a
+// alpha = 0.01 / 142, 142 being the number of table comparisons below (a
 // family-wise false-failure rate of 1 %). Cells the analog walk never reached
 // (zero in every batch: no standard error) are left out of the chi^2 and
 // checked one by one: weights never exceed 1, so N paths per direction reach
@@ -74,7 +74,8 @@ std::vector<std::string> tables_of(const Medium& m) {
   return n;
 }
 
-constexpr double kAlpha = 0.01 / 71;
+constexpr double kAlpha = 0.01 / 142;
+const char* const kEstimators[] = {"next_event", "next_event_mis"};
 constexpr double kPaths = 10 * 20000;  // per incident direction
 
 // The projected solid angle of cell i of an f table (theta_o, phi bins), 1 for energy tables.
@@ -109,23 +110,25 @@ void expect_consistent(const std::vector<Table>& analog, const std::vector<Table
   }
 }
 
-class NextEventAgainstAnalog : public testing::TestWithParam<int> {};
+class NextEventAgainstAnalog : public testing::TestWithParam<std::tuple<int, int>> {};
 
 }  // namespace
 
 TEST_P(NextEventAgainstAnalog, SameTablesWithinStatistics) {
-  const Medium& m = kMedia[GetParam()];
-  expect_consistent(slab_test::run(experiment(m, "analog", 51)), slab_test::run(experiment(m, "next_event", 52)),
+  const auto [medium, estimator] = GetParam();
+  const Medium& m = kMedia[medium];
+  expect_consistent(slab_test::run(experiment(m, "analog", 51)), slab_test::run(experiment(m, kEstimators[estimator], 52)),
                     tables_of(m));
 }
 
-INSTANTIATE_TEST_SUITE_P(Media, NextEventAgainstAnalog, testing::Range(0, 7));
+INSTANTIATE_TEST_SUITE_P(Media, NextEventAgainstAnalog, testing::Combine(testing::Range(0, 7), testing::Range(0, 2)));
 
 // The paper's depth cap: an event past max_order is dropped before its escape is tallied.
 TEST(NextEvent, OrderCapAgreesWithAnalog) {
   const std::string cap = "max_order = 2\n";
-  expect_consistent(slab_test::run(experiment(kMedia[2], "analog", 53, cap)),
-                    slab_test::run(experiment(kMedia[2], "next_event", 54, cap)), {"brdf", "brdf_btdf"});
+  const std::vector<Table> analog = slab_test::run(experiment(kMedia[2], "analog", 53, cap));
+  for (const char* estimator : kEstimators)
+    expect_consistent(analog, slab_test::run(experiment(kMedia[2], estimator, 54, cap)), {"brdf", "brdf_btdf"});
 }
 
 // exp(-sum over the layers crossed of rho sigma path length), to rounding.
@@ -153,13 +156,15 @@ TEST(NextEvent, WhiteFurnace) {
       "[[geometry.layer]]\nphase = \"sggx_surface\"\nalpha = 0.3\noptical_thickness = 1.5\n"
       "[[geometry.layer]]\nphase = \"sggx_fiber\"\nalpha = 0.6\norientation = [0, 1, 0.3]\noptical_thickness = 1.0\n",
       0};
-  const Experiment ex = experiment(conservative, "next_event", 55);
-  slab_test::expect_exact(slab_test::run(ex), "brdf_energy", "white_furnace", ex);
+  for (const char* estimator : kEstimators) {
+    const Experiment ex = experiment(conservative, estimator, 55);
+    slab_test::expect_exact(slab_test::run(ex), "brdf_energy", "white_furnace", ex);
+  }
 }
 
 TEST(NextEvent, BitIdenticalForAnyThreadCount) {
   slab_test::expect_bit_identical_threads(experiment(kMedia[2], "next_event", 56));
-  slab_test::expect_bit_identical_threads(experiment(kMedia[3], "next_event", 57));
+  slab_test::expect_bit_identical_threads(experiment(kMedia[3], "next_event_mis", 57));
 }
 
 // estimator = "next_event" takes the scalar walk over homogeneous layers;
@@ -169,7 +174,7 @@ TEST(NextEvent, RejectsWhatItDoesNotCover) {
   const std::string run = "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 10\n";
   for (const std::string& geometry :
        {"[geometry]\nkind = \"slab\"\nestimator = \"next_event\"\nwalk = \"wave\"\n" + layer + run,
-        "[geometry]\nkind = \"slab\"\nestimator = \"next_event\"\nbackend = \"openvdb\"\n" + layer + run,
+        "[geometry]\nkind = \"slab\"\nestimator = \"next_event_mis\"\nbackend = \"openvdb\"\n" + layer + run,
         "[geometry]\nkind = \"slab\"\nestimator = \"nee\"\n" + layer + run}) {
     try {
       parse_experiment(geometry, "bad.toml");
