@@ -48,18 +48,7 @@ const Medium kMedia[] = {
 };
 
 Experiment experiment(const Medium& m, const std::string& estimator, int seed, const std::string& measure_extra = "") {
-  return parse_experiment("[geometry]\nkind = \"slab\"\nestimator = \"" + estimator + "\"\n" + m.geometry +
-                              "[run]\nseed = " + std::to_string(seed) + R"(
-batches = 10
-[[measure]]
-quantity = "brdf"
-theta_i_deg = [20, 70]
-phi_i_deg = [0, 90]
-theta_o_bins = 5
-phi_bins = 6
-samples = 20000
-)" + measure_extra,
-                          "next_event.toml");
+  return slab_test::four_directions("estimator = \"" + estimator + "\"\n" + m.geometry, seed, measure_extra);
 }
 
 std::vector<std::string> tables_of(const Medium& m) {

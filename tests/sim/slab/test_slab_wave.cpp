@@ -34,18 +34,7 @@ const char* const kSubstrates[] = {
 // `layers`: the [[geometry.layer]] tables.
 Experiment stack_experiment(const std::string& substrate, const std::string& layers, const std::string& walk, int seed,
                             const std::string& measure_extra = "") {
-  return parse_experiment("[geometry]\nkind = \"slab\"\nwalk = \"" + walk + "\"\n" + substrate + layers +
-                              "[run]\nseed = " + std::to_string(seed) + R"(
-batches = 10
-[[measure]]
-quantity = "brdf"
-theta_i_deg = [20, 70]
-phi_i_deg = [0, 90]
-theta_o_bins = 5
-phi_bins = 6
-samples = 20000
-)" + measure_extra,
-                          "wave.toml");
+  return slab_test::four_directions("walk = \"" + walk + "\"\n" + substrate + layers, seed, measure_extra);
 }
 
 // One layer of optical thickness 2 with the keys `phase` (and more layers after it, if given).
