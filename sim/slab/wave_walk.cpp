@@ -104,9 +104,11 @@ struct Stack {
 };
 
 // v[layer] for a lane in `layer` (0 <= layer < K), as selects.
+// (Unrolled before the vectoriser sees them: a loop inside the lane loop stops it.)
 template <int K>
 inline double pick(const double (&v)[kMaxLayers], double layer) {
   double r = v[0];
+#pragma GCC unroll 4
   for (int k = 1; k < K; ++k) r = layer == k ? v[k] : r;
   return r;
 }
@@ -114,6 +116,7 @@ inline double pick(const double (&v)[kMaxLayers], double layer) {
 template <int K>
 inline sggx::Mat3 pick_matrix(const double (&m)[9][kMaxLayers], double layer) {
   sggx::Mat3 r;
+#pragma GCC unroll 9
   for (int e = 0; e < 9; ++e) r.m[e / 3][e % 3] = pick<K>(m[e], layer);
   return r;
 }
