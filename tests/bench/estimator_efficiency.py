@@ -91,7 +91,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("mcref")
     ap.add_argument("--entries", nargs="+", required=True, help="LAYERS:INDEX, e.g. 1:357 2:220")
-    ap.add_argument("--estimators", nargs="+", default=["analog", "next_event"])
+    ap.add_argument("--estimators", nargs="+", default=["analog", "next_event"],
+                    help="values of [geometry] estimator, or KEY=VALUE for another [geometry] key (e.g. walk=wave)")
     ap.add_argument("--reps", type=int, default=5)
     ap.add_argument("--stride-theta", type=int, default=4)
     ap.add_argument("--stride-phi", type=int, default=8)
@@ -118,9 +119,10 @@ def main():
             for rep in range(args.reps):
                 order = args.estimators if rep % 2 == 0 else args.estimators[::-1]
                 for est in order:
-                    out = os.path.join(work, f"{est}.h5")
+                    out = os.path.join(work, "run.h5")
+                    key, value = est.split("=") if "=" in est else ("estimator", est)
                     _, _, cpu = timed_run([args.mcref, "simulate", exp, "-o", out, "--threads", "1", "--quiet",
-                                           "--set", f"geometry.estimator=\"{est}\""] + settings)
+                                           "--set", f"geometry.{key}=\"{value}\""] + settings)
                     ms, total = errors(out)
                     runs[est].append((cpu, np.nanmedian(ms), np.nanmedian(total), int(np.sum(ms > 0))))
                     cells[est].append((cpu, ms, total))
