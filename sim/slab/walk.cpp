@@ -11,9 +11,10 @@ namespace mcref::volume {
 
 namespace {
 
-// The next-event estimator with MIS at a volume event of `layer` (walk.h):
-// the sampled direction's escape (weight after the event) and a uniform
-// direction's (weight before it), balance heuristic.
+// The next-event estimator with MIS at a volume event (walk.h), the photon at
+// the collision with p.d the sampled direction: that direction's escape
+// (weight after the event) and a uniform direction's (weight before it),
+// balance heuristic.
 void tally_next_event_mis(const SlabMedium& medium, const Photon& p, Vec3 wi, const Rgb& before, const Rgb& after,
                           int order, int first_class, Rng& rng, BrdfAccumulator& out) {
   const PhaseFunction& phase = *medium.layers()[p.layer].phase;
