@@ -8,6 +8,18 @@
 namespace mcref {
 
 namespace detail {
+// z^H for H a power of two, by repeated squaring (no loop: a loop inside the
+// wave walk's lane loops stops GCC's vectoriser, sim/slab/wave_walk.cpp).
+template <std::size_t H>
+inline double squarings(double z) {
+  if constexpr (H == 1) {
+    return z;
+  } else {
+    const double h = squarings<H / 2>(z);
+    return h * h;
+  }
+}
+
 template <std::size_t N>
 inline double estrin(const double* c, double z) {
   if constexpr (N == 1) {
@@ -18,9 +30,7 @@ inline double estrin(const double* c, double z) {
       while (2 * h < N) h *= 2;
       return h;
     }();
-    double zh = z;  // z^H
-    for (std::size_t k = 1; k < H; k *= 2) zh *= zh;
-    return estrin<H>(c, z) + zh * estrin<N - H>(c + H, z);
+    return estrin<H>(c, z) + squarings<H>(z) * estrin<N - H>(c + H, z);
   }
 }
 }  // namespace detail

@@ -26,6 +26,11 @@ class SggxFlakes final : public PhaseFunction {
   double max_sigma() const override { return max_sigma_; }
   double eval(Vec3 wi, Vec3 wo) const override { return sggx::specular_flake_phase(s_, wi, wo); }
   ScatterSample sample(Vec3 wi, Rng& rng) const override { return sample_sggx_flakes(s_, albedo_, f0_, wi, rng); }
+  Rgb albedo(Vec3 wi, Vec3 wo) const override {
+    const Vec3 h = normalize(wi + wo);
+    return {sggx::flake_reflectance(albedo_.r, f0_.r, wi, h), sggx::flake_reflectance(albedo_.g, f0_.g, wi, h),
+            sggx::flake_reflectance(albedo_.b, f0_.b, wi, h)};
+  }
 
  private:
   sggx::Sggx s_;
@@ -42,6 +47,7 @@ class HenyeyGreenstein final : public PhaseFunction {
     const sggx::PhaseSample p = sggx::sample_hg_phase(g_, 1.0, wi, u1, u2);
     return {p.wo, albedo_, p.valid};
   }
+  Rgb albedo(Vec3, Vec3) const override { return albedo_; }
 
  private:
   double g_;
@@ -56,6 +62,7 @@ class Isotropic final : public PhaseFunction {
     const double u1 = rng.uniform(), u2 = rng.uniform();
     return {sample_uniform_sphere(u1, u2), albedo_, true};
   }
+  Rgb albedo(Vec3, Vec3) const override { return albedo_; }
 
  private:
   Rgb albedo_;
@@ -71,6 +78,7 @@ class LambertSphere final : public PhaseFunction {
     const double mu = lambert_sphere::sample_phase_cosine_exact(u1, u2, u3);
     return {lambert_sphere::scattered_direction(-wi, mu, u4), albedo_, true};
   }
+  Rgb albedo(Vec3, Vec3) const override { return albedo_; }
 
  private:
   Rgb albedo_;

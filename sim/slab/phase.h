@@ -32,8 +32,10 @@ class PhaseFunction {
   virtual double max_sigma() const { return 1.0; }
   // Normalised f_p(wi -> wo), \int f_p dwo = 1 (no albedo).
   virtual double eval(Vec3 wi, Vec3 wo) const = 0;
-  // wo ~ f_p(wi -> .), weight = albedo (or flake reflectance F(m)).
+  // wo ~ f_p(wi -> .), weight = albedo (or flake reflectance F(m)); its pdf is eval(wi, wo).
   virtual ScatterSample sample(Vec3 wi, Rng& rng) const = 0;
+  // The weight sample() gives wo: the albedo (flakes: gamma Schlick(f0, |wi.h|), Eq. 5).
+  virtual Rgb albedo(Vec3 wi, Vec3 wo) const = 0;
 };
 
 std::unique_ptr<PhaseFunction> make_phase(const SlabLayer& layer);

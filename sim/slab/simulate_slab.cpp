@@ -65,6 +65,7 @@ std::vector<Table> simulate_slab(const Experiment& ex, const BatchLoop& loop) {
       volume::WalkSettings ws;
       ws.max_order = m.max_order;
       ws.delta_transmission = ex.slab.delta_transmission;
+      ws.estimator = ex.slab.estimator;
       const StreamKey key{ex.run.seed, static_cast<std::uint64_t>(b), k};
       std::vector<std::vector<double>> sums;
       std::vector<double> energy;

@@ -7,7 +7,9 @@
 //   substrate_eta = 0.2, substrate_k = 3.9       conductors: complex IOR, one value or [r, g, b]
 //   substrate_alpha                             rough_conductor (GGX), required
 //   delta_transmission = true                   record the unscattered transmission
-//   walk = "scalar" | "wave"                    path by path, or data-parallel (one homogeneous layer)
+//   walk = "scalar" | "wave"                    path by path, or data-parallel (up to 4 homogeneous layers)
+//   estimator = "analog" | "next_event" | "next_event_mis"   escapes tallied where they happen, or by
+//                                               their probability at every event (scalar walk, homogeneous)
 //   backend = "homogeneous" | "openvdb"         free-flight sampling (default homogeneous)
 //   tile = 1.0, lateral_voxels = 4, depth_voxels = 32   openvdb grid
 //   [[geometry.layer]]                           top to bottom, at least one
@@ -136,6 +138,14 @@ void read_slab_geometry(TomlReader& g, Experiment& e) {
   s.wave_walk = g.string("walk", {"scalar", "wave"}, std::string("scalar")) == "wave";
   if (s.wave_walk)
     if (const std::string why = volume::wave_walk_unsupported(s); !why.empty()) g.fail("walk", why);
+  const std::string estimator = g.string("estimator", {"analog", "next_event", "next_event_mis"}, std::string("analog"));
+  s.estimator = estimator == "analog"       ? SlabEstimator::kAnalog
+                : estimator == "next_event" ? SlabEstimator::kNextEvent
+                                            : SlabEstimator::kNextEventMis;
+  if (s.estimator != SlabEstimator::kAnalog && (s.wave_walk || s.grid.openvdb))
+    g.fail("estimator", "\"" + estimator + "\" needs " +
+                            (s.wave_walk ? "walk = \"scalar\" (the wave walk has no next-event estimator)"
+                                         : "backend = \"homogeneous\" (escape probabilities through OpenVDB grids are not implemented)"));
   for (std::size_t i = 0; i < s.layers.size(); ++i)
     if (!s.grid.openvdb && s.layers[i].profile.kind != DensityProfile::Kind::kConstant)
       throw ConfigError(e.file, "geometry.layer." + std::to_string(i) + ".profile",

@@ -55,6 +55,9 @@ struct SlabSubstrate {
   double alpha = 0.3;           // rough conductor: GGX roughness
 };
 
+// How the slab walk tallies the light that leaves (sim/slab/walk.h).
+enum class SlabEstimator { kAnalog, kNextEvent, kNextEventMis };
+
 // Free-flight backend: exact per-layer exponential sampling of homogeneous
 // layers, or delta tracking through OpenVDB density grids (any profile).
 struct SlabGrid {
@@ -70,6 +73,7 @@ struct SlabGeometry {
   SlabSubstrate substrate;
   bool delta_transmission = true;  // record the unscattered transmission (Sec. 4.5)
   bool wave_walk = false;          // the data-parallel walk (sim/slab/wave_walk.h)
+  SlabEstimator estimator = SlabEstimator::kAnalog;  // of the escaping light (sim/slab/walk.h)
   SlabGrid grid;
   double total_thickness() const;
   // Every layer's albedo is 1 and its flake Fresnel is 1, substrate none or a

@@ -10,6 +10,23 @@
 // totals only, if delta_transmission) and the mirror reflection of
 // a smooth conductor. Russian roulette from order 2 on keeps it unbiased;
 // max_order > 0 drops paths that would scatter more often (the paper's cap).
+//
+// Estimators of the escaping light (WalkSettings::estimator):
+//  - analog: a path is tallied where it leaves, with its weight;
+//  - next event: at every event (volume or substrate), once the new direction
+//    wo is sampled, the path's escape along wo without another collision is
+//    tallied with its probability, weight x exp(-tau to the face) (sim/slab/escape.h),
+//    in the bin of wo and the order of that event; the path then flies on as
+//    in the analog walk, and where it actually leaves it is not tallied again.
+//    Each event's escape is replaced by its expectation given wo, so the
+//    tables' expectations are the same; only the unscattered light (order 0)
+//    stays analog. It draws no extra random numbers, so it walks the same
+//    paths as the analog walk from the same stream.
+//  - next event with MIS: the same, and at volume events a second direction u,
+//    uniform over the directions that can leave (the sphere; the upper
+//    hemisphere over a substrate), tallied with weight x albedo(wi, u) f_p(wi, u)
+//    exp(-tau(u)) / (f_p(wi, u) + pdf_u); the sampled direction's escape is
+//    then weighted by f_p / (f_p + pdf_u) (balance heuristic, Veach 1997 Eq. 9.10).
 #include <cstdint>
 
 #include "models/core/rng.h"
@@ -22,6 +39,7 @@ struct WalkSettings {
   int max_order = 0;             // 0: unlimited
   bool delta_transmission = true;
   int roulette_from = 2;         // Russian roulette once order >= this
+  SlabEstimator estimator = SlabEstimator::kAnalog;  // (above); next event: homogeneous layers only
 };
 
 inline constexpr int kClassVolume = 0, kClassSubstrate = 1;

@@ -40,16 +40,17 @@ struct Paths {
   alignas(64) double depth[N];
   alignas(64) double wr[N], wg[N], wb[N];  // RGB weight
   alignas(64) double order[N], first_class[N], delta[N];
+  alignas(64) double layer[N];  // index of the layer the path is in
 
   Rgb weight(int i) const { return {wr[i], wg[i], wb[i]}; }
   void start(int i, Vec3 d) {
     dx[i] = d.x, dy[i] = d.y, dz[i] = d.z;
-    depth[i] = 0;
+    depth[i] = 0, layer[i] = 0;
     wr[i] = wg[i] = wb[i] = 1;
     order[i] = 0, first_class[i] = kClassVolume, delta[i] = 1;
   }
   void move(int from, int to) {
-    dx[to] = dx[from], dy[to] = dy[from], dz[to] = dz[from], depth[to] = depth[from];
+    dx[to] = dx[from], dy[to] = dy[from], dz[to] = dz[from], depth[to] = depth[from], layer[to] = layer[from];
     wr[to] = wr[from], wg[to] = wg[from], wb[to] = wb[from];
     order[to] = order[from], first_class[to] = first_class[from], delta[to] = delta[from];
   }
@@ -89,13 +90,36 @@ struct Lanes {
   }
 };
 
-// The layer, copied into the stages (locals: no aliasing with the lanes).
-struct Layer {
-  SlabPhase phase;
-  double thickness, density, g;
-  sggx::Sggx s;
-  Rgb albedo, f0;
+// The stack's layers (at most kMaxLayers; one phase family), copied into the
+// stages (locals: no aliasing with the lanes). A lane reads its layer's values
+// by selects on its layer index (pick): gathers through the index would stop
+// the vectoriser.
+constexpr int kMaxLayers = 4;
+struct Stack {
+  SlabPhase phase;  // of layer 0; the others are of the same family (SGGX, or the same kind)
+  int layers;
+  double top[kMaxLayers], bottom[kMaxLayers], density[kMaxLayers], g[kMaxLayers];
+  double S[9][kMaxLayers], L[9][kMaxLayers];  // SGGX matrix and its Cholesky factor, row-major
+  double ar[kMaxLayers], ag[kMaxLayers], ab[kMaxLayers], fr[kMaxLayers], fg[kMaxLayers], fb[kMaxLayers];
 };
+
+// v[layer] for a lane in `layer` (0 <= layer < K), as selects.
+// (Unrolled before the vectoriser sees them: a loop inside the lane loop stops it.)
+template <int K>
+inline double pick(const double (&v)[kMaxLayers], double layer) {
+  double r = v[0];
+#pragma GCC unroll 4
+  for (int k = 1; k < K; ++k) r = layer == k ? v[k] : r;
+  return r;
+}
+
+template <int K>
+inline sggx::Mat3 pick_matrix(const double (&m)[9][kMaxLayers], double layer) {
+  sggx::Mat3 r;
+#pragma GCC unroll 9
+  for (int e = 0; e < 9; ++e) r.m[e / 3][e % 3] = pick<K>(m[e], layer);
+  return r;
+}
 
 // Russian roulette once order >= from (walk.h): survives with probability
 // p = min(1, max weight), the weight divided by p. A zero weight (p = 0) ends
@@ -117,35 +141,50 @@ inline Vec3 deflect(Vec3 axis, double c, double u) {
   return normalize(Frame(axis).to_world({s * phi.cos, s * phi.sin, c}));
 }
 
-// Free flights through the layer (exact exponential, sigma_t = rho sigma(w),
-// Eq. 3), as free_flight.cpp's track() for one layer.
-// (The stages copy what they read of the layer into locals: conditional loads
+// Free flights to the next collision in the lane's layer or to a face of it
+// (exact exponential, sigma_t = rho sigma(w), Eq. 3), as free_flight.cpp's
+// track(); a path that reaches an inner face crosses it in the scalar pass and
+// draws a new exponential there (the same law: it is memoryless).
+// (The stages copy what they read of the stack into locals: conditional loads
 // through a pointer would stop the loop's if-conversion.)
-template <bool kSggx, bool kB>
-inline void fly_lanes(Lanes& L, int n, const Layer& layer) {
-  const Layer l = layer;
+template <bool kSggx, bool kB, int K>
+inline void fly_lanes(Lanes& L, int n, const Stack& stack) {
+  const Stack l = stack;
   Paths& p = L.paths<kB>();
   Streams& r = L.r;
   Steps& st = L.st;
   for (int i = 0; i < n; ++i) {
     const Vec3 d{p.dx[i], p.dy[i], p.dz[i]};
+    const double k = p.layer[i];
     const double tau = -simd_log(2 - r.one_to_two(i));  // -log(1 - u), 1 - u in (0, 1]
-    const double mu = l.density * (kSggx ? sggx::projected_area(l.s, d) : 1.0);
+    const double density = pick<K>(l.density, k), top = pick<K>(l.top, k), bottom = pick<K>(l.bottom, k);
+    double mu = density;
+    if constexpr (kSggx) {
+      const sggx::Mat3 S = pick_matrix<K>(l.S, k);
+      mu *= std::sqrt(std::max(0.0, sggx::quadratic_form(S, d)));  // sggx::projected_area
+    }
     const double rate = -d.z, depth = p.depth[i];  // d(depth)/ds
-    const double dist = rate > 0 ? (l.thickness - depth) / rate : rate < 0 ? -depth / rate : INFINITY;
+    const double dist = rate > 0 ? (bottom - depth) / rate : rate < 0 ? (top - depth) / rate : INFINITY;
     const bool collide = tau < mu * dist;
-    p.depth[i] = collide ? depth + rate * (tau / mu) : rate > 0 ? l.thickness : 0.0;
+    p.depth[i] = collide ? depth + rate * (tau / mu) : rate > 0 ? bottom : top;
     st.event[i] = collide ? kCollision : !(dist < INFINITY) ? kLost : rate > 0 ? kBottom : kTop;
   }
 }
 
-// (On paths b if in_b, else a.)
-MCREF_WAVE_STAGE void fly(Lanes& L, bool in_b, int n, const Layer& l) {
+template <int K>
+inline void fly_stack(Lanes& L, bool in_b, int n, const Stack& l) {
   const bool sggx = l.phase == SlabPhase::kSggxSurface || l.phase == SlabPhase::kSggxFiber;
-  if (sggx && in_b) fly_lanes<true, true>(L, n, l);
-  if (sggx && !in_b) fly_lanes<true, false>(L, n, l);
-  if (!sggx && in_b) fly_lanes<false, true>(L, n, l);
-  if (!sggx && !in_b) fly_lanes<false, false>(L, n, l);
+  if (sggx && in_b) fly_lanes<true, true, K>(L, n, l);
+  if (sggx && !in_b) fly_lanes<true, false, K>(L, n, l);
+  if (!sggx && in_b) fly_lanes<false, true, K>(L, n, l);
+  if (!sggx && !in_b) fly_lanes<false, false, K>(L, n, l);
+}
+
+// (On paths b if in_b, else a.)
+MCREF_WAVE_STAGE void fly(Lanes& L, bool in_b, int n, const Stack& l) {
+  if (l.layers == 1) fly_stack<1>(L, in_b, n, l);
+  else if (l.layers == 2) fly_stack<2>(L, in_b, n, l);
+  else fly_stack<kMaxLayers>(L, in_b, n, l);
 }
 
 // The phase-function event of every lane that collided, as walk() does it
@@ -154,9 +193,9 @@ MCREF_WAVE_STAGE void fly(Lanes& L, bool in_b, int n, const Layer& l) {
 // where the flight left the layer. (Into other arrays: a store of an unchanged
 // value back into its own array would be dropped, and the store become
 // conditional, which stops the vectoriser.)
-template <SlabPhase kPhase, bool kFromB>
-inline void scatter_lanes(Lanes& L, int n, const Layer& layer, int max_order, int roulette_from) {
-  const Layer l = layer;
+template <SlabPhase kPhase, bool kFromB, int K>
+inline void scatter_lanes(Lanes& L, int n, const Stack& stack, int max_order, int roulette_from) {
+  const Stack l = stack;
   const double cap = max_order > 0 ? max_order : INFINITY, from = roulette_from;  // order cap, roulette start
   const Paths& in = L.paths<kFromB>();
   Paths& out = L.paths<!kFromB>();
@@ -164,18 +203,22 @@ inline void scatter_lanes(Lanes& L, int n, const Layer& layer, int max_order, in
   Steps& st = L.st;
   for (int i = 0; i < n; ++i) {
     const Vec3 wi{-in.dx[i], -in.dy[i], -in.dz[i]};
+    const double k = in.layer[i];
     const double u1 = r.uniform(i), u2 = r.uniform(i);
     Vec3 wo;
-    double fr = l.albedo.r, fg = l.albedo.g, fb = l.albedo.b;
+    double fr = pick<K>(l.ar, k), fg = pick<K>(l.ag, k), fb = pick<K>(l.ab, k);
     double valid = 1;
     if constexpr (kPhase == SlabPhase::kSggxSurface) {  // both SGGX kinds: phase.cpp's sample_sggx_flakes
-      const Vec3 m = sggx::sample_visible_normal(l.s, wi, u1, u2);
+      sggx::Sggx s;
+      s.L = pick_matrix<K>(l.L, k);  // all the sampler reads
+      const Vec3 m = sggx::sample_visible_normal(s, wi, u1, u2);
       const double c = dot(wi, m), ac = std::fabs(c);
       wo = normalize(m * (2 * c) - wi);
-      fr *= sggx::schlick(l.f0.r, ac), fg *= sggx::schlick(l.f0.g, ac), fb *= sggx::schlick(l.f0.b, ac);
+      fr *= sggx::schlick(pick<K>(l.fr, k), ac), fg *= sggx::schlick(pick<K>(l.fg, k), ac),
+          fb *= sggx::schlick(pick<K>(l.fb, k), ac);
       valid = c > 0 ? 1.0 : 0.0;
     } else if constexpr (kPhase == SlabPhase::kHenyeyGreenstein) {
-      wo = deflect(-wi, sggx::sample_hg_cos_theta(l.g, u1), u2);
+      wo = deflect(-wi, sggx::sample_hg_cos_theta(pick<K>(l.g, k), u1), u2);
     } else if constexpr (kPhase == SlabPhase::kIsotropic) {
       wo = sample_uniform_sphere(u1, u2);
     } else {  // Lambert sphere, d'Eon 2021 Eq. 5: mu = sqrt((1 - u1)(1 - u2)) sin(2 pi u3) - sqrt(u1 u2)
@@ -191,6 +234,7 @@ inline void scatter_lanes(Lanes& L, int n, const Layer& layer, int max_order, in
     const bool s = scatter > 0;
     st.status[i] = ev != kCollision ? kScalar : scatter * alive > 0 ? kGoesOn : kEnded;
     out.depth[i] = in.depth[i];
+    out.layer[i] = k;
     out.order[i] = order + scatter;
     out.first_class[i] = order == 0 ? (s ? kClassVolume : in.first_class[i]) : in.first_class[i];
     out.delta[i] = in.delta[i] * (1 - scatter);
@@ -199,35 +243,49 @@ inline void scatter_lanes(Lanes& L, int n, const Layer& layer, int max_order, in
   }
 }
 
-template <SlabPhase kPhase>
-inline void scatter_phase(Lanes& L, bool from_b, int n, const Layer& l, int max_order, int roulette_from) {
+template <SlabPhase kPhase, int K>
+inline void scatter_phase(Lanes& L, bool from_b, int n, const Stack& l, int max_order, int roulette_from) {
   if (from_b)
-    scatter_lanes<kPhase, true>(L, n, l, max_order, roulette_from);
+    scatter_lanes<kPhase, true, K>(L, n, l, max_order, roulette_from);
   else
-    scatter_lanes<kPhase, false>(L, n, l, max_order, roulette_from);
+    scatter_lanes<kPhase, false, K>(L, n, l, max_order, roulette_from);
 }
 
-// (From paths b into a if from_b, else from a into b.)
-MCREF_WAVE_STAGE void scatter(Lanes& L, bool from_b, int n, const Layer& l, int max_order, int roulette_from) {
+template <int K>
+inline void scatter_stack(Lanes& L, bool from_b, int n, const Stack& l, int max_order, int roulette_from) {
   switch (l.phase) {
     case SlabPhase::kSggxSurface:
-    case SlabPhase::kSggxFiber: scatter_phase<SlabPhase::kSggxSurface>(L, from_b, n, l, max_order, roulette_from); break;
+    case SlabPhase::kSggxFiber: scatter_phase<SlabPhase::kSggxSurface, K>(L, from_b, n, l, max_order, roulette_from); break;
     case SlabPhase::kHenyeyGreenstein:
-      scatter_phase<SlabPhase::kHenyeyGreenstein>(L, from_b, n, l, max_order, roulette_from);
+      scatter_phase<SlabPhase::kHenyeyGreenstein, K>(L, from_b, n, l, max_order, roulette_from);
       break;
-    case SlabPhase::kIsotropic: scatter_phase<SlabPhase::kIsotropic>(L, from_b, n, l, max_order, roulette_from); break;
-    case SlabPhase::kLambertSphere: scatter_phase<SlabPhase::kLambertSphere>(L, from_b, n, l, max_order, roulette_from); break;
+    case SlabPhase::kIsotropic: scatter_phase<SlabPhase::kIsotropic, K>(L, from_b, n, l, max_order, roulette_from); break;
+    case SlabPhase::kLambertSphere:
+      scatter_phase<SlabPhase::kLambertSphere, K>(L, from_b, n, l, max_order, roulette_from);
+      break;
   }
 }
 
-// A lane whose flight left the layer (kScalar), as walk() does it: the tally
-// at the top, or at the bottom without a substrate; else a substrate bounce.
-// Returns the lane's new status.
+// (From paths b into a if from_b, else from a into b.)
+MCREF_WAVE_STAGE void scatter(Lanes& L, bool from_b, int n, const Stack& l, int max_order, int roulette_from) {
+  if (l.layers == 1) scatter_stack<1>(L, from_b, n, l, max_order, roulette_from);
+  else if (l.layers == 2) scatter_stack<2>(L, from_b, n, l, max_order, roulette_from);
+  else scatter_stack<kMaxLayers>(L, from_b, n, l, max_order, roulette_from);
+}
+
+// A lane whose flight left its layer (kScalar), as walk() does it: into the
+// next layer through an inner face; the tally at the top, or at the bottom
+// without a substrate; else a substrate bounce. Returns the lane's new status.
 double leave_or_bounce(Paths& p, Streams& r, double ev, int i, const SlabMedium& medium,
                              const WalkSettings& s, BrdfAccumulator& out) {
   const Vec3 d{p.dx[i], p.dy[i], p.dz[i]};
   const int order = static_cast<int>(p.order[i]), first_class = static_cast<int>(p.first_class[i]);
   if (ev == kLost) return kEnded;
+  const double next = p.layer[i] + (ev == kTop ? -1 : 1);
+  if (next >= 0 && next < static_cast<double>(medium.layers().size())) {
+    p.layer[i] = next;
+    return kGoesOn;
+  }
   if (ev == kTop || !medium.has_substrate()) {
     if (ev == kTop || order > 0 || s.delta_transmission) out.add(d, order, first_class, p.weight(i), p.delta[i] != 0);
     return kEnded;
@@ -248,18 +306,31 @@ double leave_or_bounce(Paths& p, Streams& r, double ev, int i, const SlabMedium&
 
 std::string wave_walk_unsupported(const SlabGeometry& g) {
   if (g.grid.openvdb) return "the wave walk takes backend = \"homogeneous\"";
-  if (g.layers.size() != 1) return "the wave walk takes one layer, not " + std::to_string(g.layers.size());
+  if (g.layers.size() > kMaxLayers)
+    return "the wave walk takes at most " + std::to_string(kMaxLayers) + " layers, not " + std::to_string(g.layers.size());
+  for (const SlabLayer& l : g.layers)
+    if (l.is_sggx() != g.layers.front().is_sggx() || (!l.is_sggx() && l.phase != g.layers.front().phase))
+      return "the wave walk takes layers of one phase function (SGGX surface and fibre flakes mix)";
   return "";
 }
 
 std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi, std::uint64_t count, Rng& rng,
                         BrdfAccumulator& out) {
-  const SlabLayer& sl = medium.geometry().layers.front();
-  const Layer l{sl.phase, sl.thickness, sl.density, sl.g,
-                sl.is_sggx() ? (sl.phase == SlabPhase::kSggxSurface ? sggx::surface_like(sl.alpha, sl.orientation)
-                                                                  : sggx::fiber_like(sl.alpha, sl.orientation))
-                             : sggx::Sggx{},
-                sl.albedo, sl.f0};
+  const std::vector<SlabLayer>& layers = medium.geometry().layers;
+  Stack l{};
+  l.phase = layers.front().phase;
+  l.layers = static_cast<int>(layers.size());
+  for (int k = 0; k < l.layers; ++k) {
+    const SlabLayer& sl = layers[k];
+    const sggx::Sggx S = !sl.is_sggx()                            ? sggx::Sggx{}
+                         : sl.phase == SlabPhase::kSggxSurface ? sggx::surface_like(sl.alpha, sl.orientation)
+                                                               : sggx::fiber_like(sl.alpha, sl.orientation);
+    l.top[k] = medium.layers()[k].top, l.bottom[k] = medium.layers()[k].bottom;
+    l.density[k] = sl.density, l.g[k] = sl.g;
+    for (int e = 0; e < 9; ++e) l.S[e][k] = S.S.m[e / 3][e % 3], l.L[e][k] = S.L.m[e / 3][e % 3];
+    l.ar[k] = sl.albedo.r, l.ag[k] = sl.albedo.g, l.ab[k] = sl.albedo.b;
+    l.fr[k] = sl.f0.r, l.fg[k] = sl.f0.g, l.fb[k] = sl.f0.b;
+  }
   const auto L = std::make_unique<Lanes>();
   Streams& r = L->r;
   Steps& st = L->st;

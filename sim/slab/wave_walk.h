@@ -10,8 +10,12 @@
 // agree with walk()'s within statistics, and are bit-identical for any thread
 // count like walk()'s.
 //
-// Covers one homogeneous layer (any phase function: SGGX surface or fibre
-// flakes, Henyey-Greenstein, isotropic, Lambert sphere) over any substrate.
+// Covers stacks of up to 4 homogeneous layers of one phase function (SGGX
+// surface and fibre flakes mix; or Henyey-Greenstein, isotropic, Lambert
+// sphere) over any substrate. Each lane holds its layer's index and reads that
+// layer's parameters by selects; a path crosses an inner face in the scalar
+// pass (the flight ends there and the next one starts afresh: exact, the
+// exponential being memoryless).
 #include <cstdint>
 #include <string>
 

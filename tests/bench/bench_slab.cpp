@@ -23,6 +23,9 @@
 //                     2^15 paths each; counters: wave = median over the iterations of
 //                     wave / floor events per second of the thread's CPU time, with min
 //                     and max; scalar the same for the full scalar walk (walk.h).
+//  slab/wave2       : the same on two layers (surface-like SGGX alpha 0.5, T rho 2.5,
+//                     over fibre-like SGGX alpha 0.5 along x, T rho 2.5; albedo 0.9),
+//                     against a minimal two-layer walk written here (floor_stack_path).
 //  slab/bsdf32      : paths/s over 32 incident directions stratified in cos theta_i
 //                     (the paper's Sec. 5 grid in theta); the time of one 32 x 32-direction
 //                     BSDF at 1e5 paths per direction is extrapolated as 1024 * 1e5 / (paths/s).
@@ -192,6 +195,40 @@ std::uint64_t floor_path(const sggx::Sggx& s, double tau, double albedo, Vec3 d,
   }
 }
 
+// The floor on a stack: exact exponential flights carried across the faces,
+// nothing but the physics.
+struct FloorLayer {
+  sggx::Sggx s;
+  double top, bottom, density;
+};
+std::uint64_t floor_stack_path(const std::vector<FloorLayer>& l, double albedo, Vec3 d, Rng& rng) {
+  double depth = 0;
+  int k = 0;
+  const int layers = static_cast<int>(l.size());
+  std::uint64_t events = 0;
+  for (;;) {
+    double tau = -std::log1p(-rng.uniform());
+    for (;;) {
+      const double mu = l[k].density * sggx::projected_area(l[k].s, d), rate = -d.z;
+      const double dist = ((rate > 0 ? l[k].bottom : l[k].top) - depth) / rate;
+      if (tau < mu * dist) {
+        depth += rate * (tau / mu);
+        break;
+      }
+      tau -= mu * dist;
+      depth = rate > 0 ? l[k].bottom : l[k].top;
+      k += rate > 0 ? 1 : -1;
+      if (k < 0 || k == layers) return events;
+    }
+    ++events;
+    if (rng.uniform() >= albedo) return events;
+    const Vec3 wi = -d;
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    const Vec3 m = sggx::sample_visible_normal(l[k].s, wi, u1, u2);
+    d = m * (2 * dot(wi, m)) - wi;
+  }
+}
+
 void floor_walk(benchmark::State& state) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
   const sggx::Sggx s = sggx::surface_like(0.5, {0, 0, 1});
@@ -220,11 +257,32 @@ double thread_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// The floor, the full scalar walk and the wave walk, 1 thread, on the calling thread.
-void wave(benchmark::State& state) {
-  const Experiment ex = slab(false);
+// The floor, the full scalar walk and the wave walk, 1 thread, on the calling thread;
+// one layer, or two (slab/wave2).
+void wave(benchmark::State& state, int layers) {
+  const Experiment ex = layers == 1 ? slab(false) : parse_experiment(R"([geometry]
+kind = "slab"
+[[geometry.layer]]
+phase = "sggx_surface"
+alpha = 0.5
+thickness = 0.5
+optical_thickness = 2.5
+albedo = 0.9
+[[geometry.layer]]
+phase = "sggx_fiber"
+alpha = 0.5
+orientation = [1, 0, 0]
+thickness = 0.5
+optical_thickness = 2.5
+albedo = 0.9
+[[measure]]
+quantity = "brdf"
+theta_i_deg = [30]
+samples = 1
+)", "bench.toml");
   const volume::SlabMedium medium(ex.slab);
   const sggx::Sggx s = sggx::surface_like(0.5, {0, 0, 1});
+  const std::vector<FloorLayer> stack{{s, 0.0, 0.5, 5.0}, {sggx::fiber_like(0.5, {1, 0, 0}), 0.5, 1.0, 5.0}};
   const Vec3 wi = spherical_direction(30 * kPi / 180, 0);
   BrdfLayout layout;
   layout.transmission = true;
@@ -244,8 +302,8 @@ void wave(benchmark::State& state) {
         continue;
       }
       for (std::uint64_t n = 0; n < kChunkSamples; ++n)
-        events += which == 0 ? floor_path(s, 5.0, 0.9, -wi, rng)
-                             : static_cast<std::uint64_t>(volume::walk(medium, *flight, ws, wi, rng, acc));
+        events += which == 0   ? (layers == 1 ? floor_path(s, 5.0, 0.9, -wi, rng) : floor_stack_path(stack, 0.9, -wi, rng))
+                  : static_cast<std::uint64_t>(volume::walk(medium, *flight, ws, wi, rng, acc));
     }
     benchmark::DoNotOptimize(sums.data());
     return static_cast<double>(events);
@@ -294,7 +352,8 @@ BENCHMARK_CAPTURE(engine, openvdb, true)->Name("slab/openvdb")->UseRealTime()->U
 BENCHMARK_CAPTURE(pair, linear, "linear")->Name("slab/pair/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(pair, lateral, "lateral")->Name("slab/pair/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(floor_walk)->Name("slab/floor")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
-BENCHMARK(wave)->Name("slab/wave")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(wave, one, 1)->Name("slab/wave")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(wave, two, 2)->Name("slab/wave2")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(bsdf32)->Name("slab/bsdf32")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 BENCHMARK_MAIN();

@@ -15,6 +15,23 @@
 
 namespace slab_test {
 
+// A slab: [geometry] kind = "slab" and `geometry` (keys, then the layers);
+// 10 batches of 20 000 paths at theta_i = 20, 70 deg and phi_i = 0, 90 deg,
+// 5 x 6 outgoing bins; `measure_extra`: more [[measure]] keys.
+inline mcref::Experiment four_directions(const std::string& geometry, int seed, const std::string& measure_extra = "") {
+  return mcref::parse_experiment("[geometry]\nkind = \"slab\"\n" + geometry + "[run]\nseed = " + std::to_string(seed) + R"(
+batches = 10
+[[measure]]
+quantity = "brdf"
+theta_i_deg = [20, 70]
+phi_i_deg = [0, 90]
+theta_o_bins = 5
+phi_bins = 6
+samples = 20000
+)" + measure_extra,
+                                 "slab_test.toml");
+}
+
 inline std::vector<mcref::Table> run(const mcref::Experiment& ex, int threads = 2) {
   mcref::SimulateOptions o;
   o.threads = threads;

@@ -1,10 +1,10 @@
 // The data-parallel slab walk (sim/slab/wave_walk.h) against the scalar walk
 // (sim/slab/walk.h) on the same medium, for every phase function and every
-// substrate: two independent simulations (seeds 41 and 42, 10 batches of
+// substrate, and on stacks of 2 and 3 layers: two independent simulations (seeds 41 and 42, 10 batches of
 // 20 000 paths per incident direction), every cell of the BRDF, BTDF and
 // per-component albedo and delta tables compared through the quadrature of
 // both standard errors (RGB): p >= alpha and the Sidak |z| bound at alpha, with
-// alpha = 0.01 / 62, 62 being the number of table comparisons below (a
+// alpha = 0.01 / 74, 74 being the number of table comparisons below (a
 // family-wise false-failure rate of 1 %; at alpha = 0.001 per table, about 6 %).
 // Then the white furnace, thread-count independence and the config checks.
 #include <cmath>
@@ -31,24 +31,20 @@ const char* const kSubstrates[] = {
     "substrate = \"rough_conductor\"\nsubstrate_alpha = 0.3\n",
 };
 
-Experiment experiment(const std::string& substrate, const std::string& phase, const std::string& walk, int seed,
-                      const std::string& measure_extra = "") {
-  return parse_experiment("[geometry]\nkind = \"slab\"\nwalk = \"" + walk + "\"\n" + substrate +
-                              "[[geometry.layer]]\nthickness = 1.0\noptical_thickness = 2.0\n" + phase +
-                              "[run]\nseed = " + std::to_string(seed) + R"(
-batches = 10
-[[measure]]
-quantity = "brdf"
-theta_i_deg = [20, 70]
-phi_i_deg = [0, 90]
-theta_o_bins = 5
-phi_bins = 6
-samples = 20000
-)" + measure_extra,
-                          "wave.toml");
+// `layers`: the [[geometry.layer]] tables.
+Experiment stack_experiment(const std::string& substrate, const std::string& layers, const std::string& walk, int seed,
+                            const std::string& measure_extra = "") {
+  return slab_test::four_directions("walk = \"" + walk + "\"\n" + substrate + layers, seed, measure_extra);
 }
 
-constexpr double kAlpha = 0.01 / 62;
+// One layer of optical thickness 2 with the keys `phase` (and more layers after it, if given).
+Experiment experiment(const std::string& substrate, const std::string& phase, const std::string& walk, int seed,
+                      const std::string& measure_extra = "") {
+  return stack_experiment(substrate, "[[geometry.layer]]\nthickness = 1.0\noptical_thickness = 2.0\n" + phase, walk, seed,
+                          measure_extra);
+}
+
+constexpr double kAlpha = 0.01 / 74;
 
 class WaveAgainstScalar : public testing::TestWithParam<std::tuple<int, int>> {};
 
@@ -67,6 +63,38 @@ TEST_P(WaveAgainstScalar, SameTablesWithinStatistics) {
 INSTANTIATE_TEST_SUITE_P(PhasesAndSubstrates, WaveAgainstScalar,
                          testing::Combine(testing::Range(0, 5), testing::Range(0, 4)));
 
+// Stacks: {substrate, layers}; layers cross in the wave walk's scalar pass.
+const char* const kStacks[][2] = {
+    {"substrate = \"none\"\n",
+     "[[geometry.layer]]\nphase = \"sggx_surface\"\nalpha = 0.2\nthickness = 0.5\ndensity = 1.0\nalbedo = [0.9, 0.7, 0.5]\n"
+     "f0 = 0.6\n[[geometry.layer]]\nphase = \"sggx_fiber\"\nalpha = 0.5\norientation = [0, 1, 0.3]\nthickness = 1.5\n"
+     "density = 2.0\nalbedo = 0.95\n"},
+    {"substrate = \"lambertian\"\nsubstrate_albedo = [0.8, 0.5, 0.3]\n",
+     "[[geometry.layer]]\nphase = \"sggx_fiber\"\nalpha = 0.3\norientation_deg = [90, 0]\noptical_thickness = 0.7\n"
+     "albedo = 0.8\n[[geometry.layer]]\nphase = \"sggx_surface\"\nalpha = 0.6\noptical_thickness = 1.5\nalbedo = 0.9\n"},
+    {"substrate = \"rough_conductor\"\nsubstrate_alpha = 0.3\n",
+     "[[geometry.layer]]\nphase = \"hg\"\ng = 0.7\noptical_thickness = 1.0\nalbedo = [0.9, 0.7, 0.5]\n"
+     "[[geometry.layer]]\nphase = \"hg\"\ng = -0.3\noptical_thickness = 0.5\nalbedo = 0.95\n"},
+    {"substrate = \"conductor\"\n",
+     "[[geometry.layer]]\nphase = \"isotropic\"\noptical_thickness = 0.3\nalbedo = 0.95\n"
+     "[[geometry.layer]]\nphase = \"isotropic\"\ndensity = 0\nthickness = 0.5\n"
+     "[[geometry.layer]]\nphase = \"isotropic\"\noptical_thickness = 1.0\nalbedo = 0.6\n"},
+};
+
+class WaveStackAgainstScalar : public testing::TestWithParam<int> {};
+
+TEST_P(WaveStackAgainstScalar, SameTablesWithinStatistics) {
+  const int k = GetParam();
+  const Experiment scalar = stack_experiment(kStacks[k][0], kStacks[k][1], "scalar", 61);
+  const Experiment wave = stack_experiment(kStacks[k][0], kStacks[k][1], "wave", 62);
+  std::vector<std::string> names{"brdf", "brdf_albedo"};
+  if (k == 0) names.insert(names.end(), {"brdf_btdf", "brdf_btdf_albedo", "brdf_btdf_delta"});
+  if (k == 3) names.push_back("brdf_delta");
+  slab_test::expect_same(slab_test::run(scalar), slab_test::run(wave), names, false, kAlpha);
+}
+
+INSTANTIATE_TEST_SUITE_P(Stacks, WaveStackAgainstScalar, testing::Range(0, 4));
+
 // The paper's depth cap (max_order) and the roulette from order 2 on.
 TEST(WaveWalk, OrderCapAgreesWithScalar) {
   const std::string cap = "max_order = 2\n";
@@ -80,18 +108,27 @@ TEST(WaveWalk, OrderCapAgreesWithScalar) {
 TEST(WaveWalk, WhiteFurnace) {
   const Experiment ex = experiment(kSubstrates[0], "phase = \"sggx_surface\"\nalpha = 0.3\n", "wave", 45);
   slab_test::expect_white_furnace(slab_test::run(ex), ex, 4);
+  const Experiment two = experiment(kSubstrates[0],
+                                    "phase = \"sggx_surface\"\nalpha = 0.3\n[[geometry.layer]]\nphase = \"sggx_fiber\"\n"
+                                    "alpha = 0.6\norientation = [0, 1, 0.3]\noptical_thickness = 1.0\n",
+                                    "wave", 48);
+  slab_test::expect_white_furnace(slab_test::run(two), two, 4);
 }
 
 TEST(WaveWalk, BitIdenticalForAnyThreadCount) {
   slab_test::expect_bit_identical_threads(experiment(kSubstrates[3], kPhases[0], "wave", 46));
   slab_test::expect_bit_identical_threads(experiment(kSubstrates[0], kPhases[4], "wave", 47));
+  slab_test::expect_bit_identical_threads(stack_experiment(kStacks[1][0], kStacks[1][1], "wave", 49));
 }
 
-// walk = "wave" takes one homogeneous layer; anything else is a config error naming the key.
+// walk = "wave" takes up to 4 homogeneous layers of one phase function; anything
+// else is a config error naming the key.
 TEST(WaveWalk, RejectsWhatItDoesNotCover) {
   const std::string layer = "[[geometry.layer]]\nphase = \"isotropic\"\n";
+  const std::string flakes = "[[geometry.layer]]\nphase = \"sggx_fiber\"\nalpha = 0.3\n";
   const std::string run = "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 10\n";
-  for (const std::string& geometry : {"[geometry]\nkind = \"slab\"\nwalk = \"wave\"\n" + layer + layer + run,
+  for (const std::string& geometry : {"[geometry]\nkind = \"slab\"\nwalk = \"wave\"\n" + layer + layer + layer + layer + layer + run,
+                                      "[geometry]\nkind = \"slab\"\nwalk = \"wave\"\n" + flakes + layer + run,
                                       "[geometry]\nkind = \"slab\"\nwalk = \"wave\"\nbackend = \"openvdb\"\n" + layer + run}) {
     try {
       parse_experiment(geometry, "bad.toml");
@@ -102,4 +139,9 @@ TEST(WaveWalk, RejectsWhatItDoesNotCover) {
     }
   }
   EXPECT_EQ(volume::wave_walk_unsupported(parse_experiment("[geometry]\nkind = \"slab\"\n" + layer + run, "ok.toml").slab), "");
+  const std::string surface = "[[geometry.layer]]\nphase = \"sggx_surface\"\nalpha = 0.5\n";
+  EXPECT_EQ(volume::wave_walk_unsupported(
+                parse_experiment("[geometry]\nkind = \"slab\"\n" + flakes + surface + run, "ok.toml").slab),
+            "");
+  EXPECT_EQ(volume::wave_walk_unsupported(parse_experiment("[geometry]\nkind = \"slab\"\n" + layer + layer + layer + layer + run, "ok.toml").slab), "");
 }
