@@ -22,6 +22,14 @@ struct ModelInfo {
   std::string component = "";
 };
 
+// Accuracy of the micrograin geometry statistics' bin averages (NDF, vNDF,
+// conditional masking, g1_g_dist; issue #15, part 4), as tested against
+// references (tests/validate/micrograin/test_geometry_cell_average.cpp). The
+// BRDF cell averages still use fixed per-cell rules
+// (validate/micrograin/micrograin_brdf_models.cpp), as do the slab and sphere
+// families (validate/slab, validate/spheres).
+constexpr double kCellRelTolerance = 1e-6;
+
 // Model values on the cells of `table` (same layout as table.values()).
 using ModelEvaluator = std::function<std::vector<double>(const std::string& model, const Table&, const Experiment&)>;
 using ModelStderrEvaluator = std::function<std::vector<double>(const std::string& model, const Table&, const Experiment&,

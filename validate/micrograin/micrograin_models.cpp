@@ -1,5 +1,6 @@
 #include "validate/model_evaluation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <stdexcept>
@@ -61,25 +62,65 @@ std::vector<ModelInfo> geometry_model_list() {
   return models;
 }
 
-// Weighted average of f over a (theta, phi) cell: int f w sin / int w sin,
-// by an n x n Gauss-Legendre rule (NaN if the weight vanishes on the cell).
-double cell_average(double t0, double t1, double p0, double p1, int n,
-                    const std::function<double(double, double)>& f, const std::function<double(double, double)>& w) {
-  static const GaussLegendre rule(24);
-  const GaussLegendre small(n);
-  const GaussLegendre& g = n == 24 ? rule : small;
-  double num = 0, den = 0;
-  for (std::size_t a = 0; a < g.x.size(); ++a) {
-    const double th = 0.5 * (t0 + t1) + 0.5 * (t1 - t0) * g.x[a];
-    for (std::size_t b = 0; b < g.x.size(); ++b) {
-      const double ph = 0.5 * (p0 + p1) + 0.5 * (p1 - p0) * g.x[b];
-      const double wt = g.w[a] * g.w[b] * w(th, ph) * std::sin(th);
-      if (wt == 0) continue;
-      num += wt * f(th, ph);
-      den += wt;
-    }
+// ∫∫ h sin theta dtheta dphi over [t0, t1] x [p0, p1], where h vanishes
+// beyond the visibility curve <i.m> = 0 (or i = 0: no such curve): nested
+// adaptive Gauss-Legendre, the theta integral ending at the curve, the phi
+// integral split where the curve crosses theta = t0 or t1, so that both
+// integrands are smooth up to kinks that bisection finds (a fixed or 2-D rule
+// whose nodes all miss a thin visible sliver would return 0 there). Accurate
+// to about rel of the integral's first estimate (issue #15, part 4).
+double visible_integral(const std::function<double(double, double)>& h, Vec3 i, double t0, double t1, double p0,
+                        double p1, double rel) {
+  const double ti = std::acos(std::fmin(1.0, i.z)), phi_i = std::atan2(i.y, i.x);
+  // Visible theta < theta_b(phi) when cos(phi - phi_i) < 0: tan theta_b = -1 / (tan theta_i cos(phi - phi_i)).
+  auto upper = [&](double phi) {
+    const double c = std::sin(ti) * std::cos(phi - phi_i);
+    return c < 0 ? std::fmin(t1, std::atan2(i.z, -c)) : t1;
+  };
+  std::vector<double> cuts{p0};
+  for (double t : {t0, t1}) {
+    const double c = -1 / (std::tan(ti) * std::tan(t));  // cos(phi - phi_i) where theta_b = t
+    if (!(c > -1 && c < 0)) continue;
+    for (int k = -2; k <= 2; ++k)
+      for (double sign : {-1.0, 1.0}) {
+        const double phi = phi_i + sign * std::acos(c) + 2 * kPi * k;
+        if (phi > p0 && phi < p1) cuts.push_back(phi);
+      }
   }
-  return den > 0 ? num / den : NAN;
+  cuts.push_back(p1);
+  std::sort(cuts.begin(), cuts.end());
+  auto inner = [&](double phi, double tol) {
+    const double b = upper(phi);
+    return b > t0 ? integrate_adaptive([&](double th) { return h(th, phi) * std::sin(th); }, t0, b, tol) : 0.0;
+  };
+  // First estimate (16-point rules) for the scale, then the adaptive pass.
+  static const GaussLegendre g16(16);
+  double scale = 0;
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
+    scale += std::fabs(g16.integrate([&](double phi) { return inner(phi, 1e300); }, cuts[k], cuts[k + 1]));
+  if (scale == 0) return 0;
+  const double tol = rel * scale;
+  double sum = 0;
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
+    sum += integrate_adaptive([&](double phi) { return inner(phi, 0.1 * tol / (p1 - p0)); }, cuts[k], cuts[k + 1],
+                              0.5 * tol * (cuts[k + 1] - cuts[k]) / (p1 - p0));
+  return sum;
+}
+
+// Weighted average of f over a (theta, phi) cell, ∫ f w sin / ∫ w sin, with
+// the weight (or f w) vanishing beyond the visibility curve of i (i = +z: none),
+// each integral to 1e-8 of itself (far below kCellRelTolerance); NaN if the
+// weight vanishes on the cell.
+double cell_average(double t0, double t1, double p0, double p1, const std::function<double(double, double)>& f,
+                    const std::function<double(double, double)>& w, Vec3 i = {0, 0, 1}) {
+  constexpr double kRel = 1e-8;
+  const double den = visible_integral(w, i, t0, t1, p0, p1, kRel);
+  if (!(den > 0)) return NAN;
+  auto fw = [&](double th, double ph) {
+    const double x = w(th, ph);
+    return x == 0 ? 0 : x * f(th, ph);
+  };
+  return visible_integral(fw, i, t0, t1, p0, p1, kRel) / den;
 }
 
 // The "vndf_sampler" model: per incident direction of the table, kVndfSamplerSamples
@@ -167,7 +208,7 @@ std::vector<double> evaluate_geometry_model(const std::string& model, const Tabl
       auto d = [&](double a, double b) {
         return model == "ndf_eq17" ? mg::ndf(f, normal(a, b)) : mg::ggx_ndf(alpha, a);
       };
-      out[k] = cell_average(th.lower(i[0]), th.upper(i[0]), ph.lower(i[1]), ph.upper(i[1]), 8, d,
+      out[k] = cell_average(th.lower(i[0]), th.upper(i[0]), ph.lower(i[1]), ph.upper(i[1]), d,
                             [](double a, double) { return std::cos(a); });
     });
     return out;
@@ -184,26 +225,14 @@ std::vector<double> evaluate_geometry_model(const std::string& model, const Tabl
       else if (model == "g1_smith_ggx_alpha_tilde") out[k] = 1 / (1 + mg::lambda_ggx_equivalent(f, theta));
       else if (model == "g1_g_dist") {
         // Average of G_dist over the height field's normals, weighted by projected area <i.m>+ D(m).
-        double num = 0, den = 0;
-        const int n = 12;
-        for (int a = 0; a < 8 * n; ++a)
-          for (int b = 0; b < 2 * n; ++b) {
-            const double t0 = (kPi / 2) * a / (8 * n), t1 = (kPi / 2) * (a + 1) / (8 * n);
-            const double p0 = phi + 2 * kPi * b / (2 * n), p1 = phi + 2 * kPi * (b + 1) / (2 * n);
-            auto w = [&](double x, double y) {
+        out[k] = cell_average(
+            0, kPi / 2, phi, phi + 2 * kPi,
+            [&](double x, double y) { return mg::distant_masking(f, wi, mg::unit_height(f, normal(x, y))); },
+            [&](double x, double y) {
               const Vec3 m = normal(x, y);
               return std::fmax(0.0, dot(wi, m)) * mg::ndf(f, m);
-            };
-            const double avg = cell_average(t0, t1, p0, p1, 6,
-                                            [&](double x, double y) { return mg::distant_masking(f, wi, mg::unit_height(f, normal(x, y))); }, w);
-            if (!std::isfinite(avg)) continue;
-            // Weight of the cell: integral of w over it (same rule).
-            const double cell_w = cell_average(t0, t1, p0, p1, 6, w, [](double, double) { return 1.0; }) *
-                                  (std::cos(t0) - std::cos(t1)) * (p1 - p0);
-            num += avg * cell_w;
-            den += cell_w;
-          }
-        out[k] = num / den;
+            },
+            wi);
       }
     });
     return out;
@@ -238,21 +267,24 @@ std::vector<double> evaluate_geometry_model(const std::string& model, const Tabl
       const double t0 = th.lower(i[dth]), t1 = th.upper(i[dth]);
       const double p0 = phi_i + ph.lower(i[dph]), p1 = phi_i + ph.upper(i[dph]);
       if (t.quantity == "vndf") {
-        out[k] = cell_average(t0, t1, p0, p1, 24, [&](double a, double b) { return mg::visible_ndf(f, wi, normal(a, b)); },
-                              [](double, double) { return 1.0; });
+        // The weight 1 on the whole cell; f (the vNDF) vanishes beyond the visibility curve.
+        const double area = (std::cos(t0) - std::cos(t1)) * (p1 - p0);
+        out[k] = visible_integral([&](double a, double b) { return mg::visible_ndf(f, wi, normal(a, b)); }, wi, t0, t1,
+                                  p0, p1, 1e-8) /
+                 area;
       } else {
         auto w = [&](double a, double b) {
           const Vec3 m = normal(a, b);
           return std::fmax(0.0, dot(wi, m)) * mg::ndf(f, m);
         };
         const double smith = 1 / (1 + mg::lambda_quadrature(f, wi));
-        out[k] = cell_average(t0, t1, p0, p1, 24,
+        out[k] = cell_average(t0, t1, p0, p1,
                               [&](double a, double b) {
                                 return model == "g1_conditional_g_dist"
                                            ? mg::distant_masking(f, wi, mg::unit_height(f, normal(a, b)))
                                            : smith;
                               },
-                              w);
+                              w, wi);
       }
     });
     return out;
