@@ -12,50 +12,30 @@
 #include <string>
 #include <thread>
 
-#include "sim/dataset/dataset_config.h"
 #include "sim/dataset/dataset_file.h"
-#include "sim/dataset/dataset_run.h"
 #include "sim/dataset/entry_assembler.h"
 #include "sim/experiment/config_error.h"
+#include "sim/tally/table.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-const char* kBase = R"(
-[geometry]
-kind = "slab"
-
-[[geometry.layer]]
-phase = "sggx_surface"
-alpha = 0.5
-thickness = 1.0
-density = 1.0
-albedo = 0.8
-
-[run]
-seed = 1
-batches = 2
-
-[[measure]]
-quantity = "brdf"
-theta_i_deg = [20, 60]
-theta_o_bins = 3
-phi_bins = 2
-samples = 100
-)";
-
-const char* kDataset = R"(
-[dataset]
-experiment = "base.toml"
-entries = 6
-seed = 7
-
-[[parameter]]
-key = "geometry.layer.0.thickness"
-range = [0.1, 10.0]
-distribution = "log_uniform"
-)";
+// Entry i of a dataset of 6: one small table whose sums depend on i.
+mcref::DatasetEntry entry(std::int64_t i) {
+  mcref::DatasetEntry e;
+  e.index = i;
+  e.seed = static_cast<std::uint64_t>(100 + i);
+  e.parameters = {0.5 * static_cast<double>(i)};
+  e.assignments = "geometry.layer.0.thickness=" + std::to_string(0.5 * static_cast<double>(i));
+  e.config = "[run]\nseed = " + std::to_string(100 + i) + "\n";
+  mcref::Table t("brdf", "brdf", {mcref::Axis::uniform_bins("theta_o", "rad", 0, 1.5, 3)});
+  t.batches = 2;
+  t.sum = {1.0 + static_cast<double>(i), 2.0, 3.0};
+  t.sum_sq = {2.0 + static_cast<double>(i * i), 2.5, 5.0};
+  e.tables.push_back(t);
+  return e;
+}
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -68,34 +48,34 @@ class Assembler : public ::testing::Test {
     dir_ = fs::temp_directory_path() / ("mcref_test_entry_assembler_" + std::to_string(getpid()) + "_" +
                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    std::ofstream(dir_ / "base.toml") << kBase;
-    std::ofstream(dir_ / "ds.toml") << kDataset;
-    config_ = mcref::load_dataset((dir_ / "ds.toml").string());
-    // The reference file of a whole run, and its entries as the parts the ranks write.
-    mcref::DatasetRunOptions o;
-    o.output = path("ref.h5");
-    o.threads = 1;
-    o.quiet = true;
-    mcref::run_dataset(config_, o);
-    fs::create_directories(path("p.h5.parts"));
-    mcref::DatasetReader ref(path("ref.h5"));
+    fs::create_directories(dir_ / "p.h5.parts");
+    header_.mcref_version = "test";
+    header_.sim_fingerprint = "test";
+    header_.entries = 6;
+    header_.columns = {"geometry.layer.0.thickness"};
+    // The reference: the 6 entries written in order by one writer, as one process does;
+    // and each entry as the part a rank writes.
+    mcref::DatasetWriter ref(path("ref.h5"), header_);
     for (std::int64_t i = 0; i < 6; ++i) {
-      mcref::DatasetWriter w(part(i), mcref::dataset_header(config_, "part"));
-      w.add(ref.entry(i));
+      ref.add(entry(i));
+      mcref::DatasetHeader part = header_;
+      part.shard = "part";
+      mcref::DatasetWriter w(part_path(i), part);
+      w.add(entry(i));
       w.commit();
     }
+    ref.commit();
   }
   void TearDown() override { fs::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::string part(std::int64_t i) const { return path("p.h5.parts/entry-" + std::to_string(i) + ".h5"); }
+  std::string part_path(std::int64_t i) const { return path("p.h5.parts/entry-" + std::to_string(i) + ".h5"); }
   std::unique_ptr<mcref::EntryAssembler> assembler(const std::string& out, const std::vector<bool>& finished) {
     return std::make_unique<mcref::EntryAssembler>(
-        path(out), mcref::dataset_header(config_, "all"), std::vector<std::int64_t>{0, 1, 2, 3, 4, 5},
-        [this](std::int64_t i) { return part(i); }, finished);
+        path(out), header_, std::vector<std::int64_t>{0, 1, 2, 3, 4, 5},
+        [this](std::int64_t i) { return part_path(i); }, finished);
   }
   fs::path dir_;
-  mcref::DatasetConfig config_;
+  mcref::DatasetHeader header_;
 };
 
 }  // namespace
@@ -119,7 +99,7 @@ TEST_F(Assembler, AnyFinishingOrderGivesTheBytesOfOneProcess) {
   auto all = assembler("all.h5", std::vector<bool>(6, true));
   all->commit();
   EXPECT_TRUE(slurp(path("all.h5")) == reference);
-  for (int i = 0; i < 6; ++i) EXPECT_TRUE(fs::exists(part(i))) << "the assembler must leave the parts to its caller";
+  for (int i = 0; i < 6; ++i) EXPECT_TRUE(fs::exists(part_path(i))) << "the assembler must leave the parts to its caller";
 }
 
 TEST_F(Assembler, StoppedBeforeTheLastEntryWritesNothing) {
@@ -133,7 +113,7 @@ TEST_F(Assembler, StoppedBeforeTheLastEntryWritesNothing) {
 }
 
 TEST_F(Assembler, DamagedPartIsAnErrorNamingIt) {
-  std::ofstream(part(2), std::ios::trunc) << "damaged";
+  std::ofstream(part_path(2), std::ios::trunc) << "damaged";
   auto a = assembler("bad.h5", std::vector<bool>(6, false));
   a->finished(0);
   a->finished(1);
