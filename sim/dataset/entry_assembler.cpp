@@ -1,6 +1,20 @@
 #include "sim/dataset/entry_assembler.h"
 
+#include <hdf5.h>
+
 namespace mcref {
+
+namespace {
+
+// HDF5 built thread-safe (Debian's is) serialises its calls under a lock of
+// its own, so this thread may write OUTPUT while rank 0's computing thread
+// writes its parts. Otherwise the assembly waits for the computation.
+bool hdf5_threadsafe() {
+  hbool_t ts = false;
+  return H5is_library_threadsafe(&ts) >= 0 && ts;
+}
+
+}  // namespace
 
 EntryAssembler::EntryAssembler(const std::string& output, const DatasetHeader& header,
                                std::vector<std::int64_t> indices,
@@ -10,8 +24,9 @@ EntryAssembler::EntryAssembler(const std::string& output, const DatasetHeader& h
       header_(header),
       indices_(std::move(indices)),
       part_path_(std::move(part_path)),
-      finished_(finished),
-      thread_([this] { run(); }) {}
+      finished_(finished) {
+  if (hdf5_threadsafe()) thread_ = std::thread([this] { run(); });
+}
 
 EntryAssembler::~EntryAssembler() {
   {
@@ -22,8 +37,6 @@ EntryAssembler::~EntryAssembler() {
   if (thread_.joinable()) thread_.join();
 }
 
-// HDF5 (built thread-safe) is called from this thread alone for OUTPUT; the
-// computing thread of rank 0 writes its parts meanwhile, under HDF5's lock.
 void EntryAssembler::run() {
   try {
     DatasetWriter w(output_, header_);
@@ -52,7 +65,8 @@ void EntryAssembler::finished(std::size_t k) {
 }
 
 void EntryAssembler::commit() {
-  thread_.join();
+  if (thread_.joinable()) thread_.join();
+  else run();
   if (error_) std::rethrow_exception(error_);
 }
 

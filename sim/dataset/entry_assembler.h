@@ -6,7 +6,8 @@
 // writes fixes the bytes, so OUTPUT is the same whenever the entries finish.
 // The parts stay until OUTPUT is committed (a killed job resumes from them);
 // an unfinished assembly leaves only its temporary file, which the next run
-// writing OUTPUT removes.
+// writing OUTPUT removes. With an HDF5 library not built thread-safe, the
+// assembly runs in commit(), after the computation.
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
@@ -49,7 +50,7 @@ class EntryAssembler {
   std::vector<bool> finished_;
   bool stop_ = false;
   std::exception_ptr error_;
-  std::thread thread_;  // last: starts once the rest is set
+  std::thread thread_;
 };
 
 }  // namespace mcref
