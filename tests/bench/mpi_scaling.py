@@ -8,8 +8,8 @@ np = 1 and np = 2 alternating. For each repetition:
                     ranks and of mpirun: 1 when the split adds no work.
 The cases:
   start-up   `mpirun -np N mcref --version`: what launching N ranks costs;
-  dataset    64 slab entries of small tables (about 0.4 s of CPU each; 1 s
-             apart in cost at most): the scheduler, its messages, the tail;
+  dataset    64 slab entries of small tables (about 0.3 s of CPU each, slab
+             thickness 0.5-2): the scheduler, its messages, the tail;
   paper      8 SpongeCake 2-layer entries with the paper's 32^4-bin tables at
              1/10 of the paper's paths, written --lean: rank 0's assembly of
              404 MB parts beside the computation;
