@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "sim/dataset/dataset_entry.h"
+#include "sim/dataset/entry_assembler.h"
 #include "sim/dataset/entry_scheduler.h"
 #include "sim/experiment/config_error.h"
 #include "sim/experiment/simulate.h"
@@ -128,11 +129,13 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
   // other ranks learn whether that failed.
   std::vector<std::int64_t> pending;
   bool more = false;  // pending entries beyond --stop-after
+  std::vector<bool> finished;  // of this shard's entries, k < s.entries (on rank 0)
   std::string error;
   if (ranks.root()) {
     try {
       for (std::int64_t k = 0; k < s.entries && !more; ++k) {
-        if (usable_part(part_path(dir, index(k)), part_header, index(k), dir)) ++s.reused;
+        finished.push_back(usable_part(part_path(dir, index(k)), part_header, index(k), dir));
+        if (finished.back()) ++s.reused;
         else if (o.stop_after < 0 || static_cast<std::int64_t>(pending.size()) < o.stop_after) pending.push_back(index(k));
         else more = true;
       }
@@ -167,19 +170,25 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
     w.commit();
     return summary.rays;
   };
-  const ScheduleSummary done =
-      schedule_entries(ranks, pending, -1, compute, [&](std::int64_t, double) { progress.advance(1); });
+  // Rank 0 assembles OUTPUT while the entries are computed, unless this run
+  // stops before the last one.
+  std::unique_ptr<EntryAssembler> assembler;
+  if (ranks.root() && !more) {
+    std::vector<std::int64_t> indices;
+    for (std::int64_t k = 0; k < s.entries; ++k) indices.push_back(index(k));
+    assembler = std::make_unique<EntryAssembler>(o.output, final_header, std::move(indices),
+                                                 [&](std::int64_t i) { return part_path(dir, i); }, finished);
+  }
+  const ScheduleSummary done = schedule_entries(ranks, pending, -1, compute, [&](std::int64_t i, double) {
+    progress.advance(1);
+    if (assembler) assembler->finished(static_cast<std::size_t>((i - o.shard) / o.shards));
+  });
   s.computed = done.computed;
   s.rays = done.rays;
   progress.finish();
   s.seconds = progress.elapsed_seconds();
-  if (!ranks.root()) return s;
-  if (more || s.computed + s.reused < s.entries) return s;
-  {
-    DatasetWriter w(o.output, final_header);
-    for (std::int64_t k = 0; k < s.entries; ++k) w.add(DatasetReader(part_path(dir, index(k))).entry(index(k)));
-    w.commit();
-  }
+  if (!assembler) return s;
+  assembler->commit();
   std::error_code ec;
   for (std::int64_t k = 0; k < s.entries; ++k) fs::remove(part_path(dir, index(k)), ec);
   // Temporary files of interrupted part writes; anything else stays, and so does the directory.

@@ -1,7 +1,8 @@
 #pragma once
 // Running a dataset: every entry of a shard simulated once, kept as an atomic
 // per-entry part file in OUTPUT.parts/ (so an interrupted run resumes without
-// losing finished entries), then assembled into OUTPUT atomically; and
+// losing finished entries), and assembled into OUTPUT atomically, in index
+// order, while the later entries are computed (sim/dataset/entry_assembler.h); and
 // merging shard files into the file a single-process run would have written,
 // byte for byte.
 #include <cstdint>
@@ -22,7 +23,8 @@ struct DatasetRunOptions {
   std::int64_t stop_after = -1;  // compute at most this many new entries, then stop without assembling
   bool lean = false;             // OUTPUT in lean storage (the parts stay full, so resume works)
   // Ranks the entries are spread over (sim/dataset/entry_scheduler.h): each
-  // writes the parts it computes; rank 0 scans the parts and assembles OUTPUT.
+  // writes the parts it computes; rank 0 scans the parts and assembles OUTPUT
+  // on a thread of its own as they are finished.
   const Communicator* ranks = &Communicator::self();
 };
 

@@ -34,6 +34,17 @@ bool launched_by_mpi() {
 void check(int rc, const char* what) {
   if (rc != MPI_SUCCESS) throw std::runtime_error(std::string("MPI error in ") + what);
 }
+
+// Polls `done` with naps of 50 us doubling to 2 ms between polls: a blocking
+// MPI call would spin on the core while the other rank is busy, taking it
+// from the threads that compute.
+template <class Done>
+void wait_napping(const Done& done) {
+  for (auto nap = std::chrono::microseconds(50); !done();) {
+    std::this_thread::sleep_for(nap);
+    if (nap < std::chrono::milliseconds(2)) nap *= 2;
+  }
+}
 #endif
 
 }  // namespace
@@ -52,7 +63,14 @@ const Communicator& Communicator::world() {
 
 void Communicator::send(int to, int tag, const std::string& bytes) const {
   if (!mpi_) no_mpi();
-  check(MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, to, tag, MPI_COMM_WORLD), "MPI_Send");
+  // A large message waits for the receiver to be ready: sleep meanwhile.
+  MPI_Request request;
+  check(MPI_Isend(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, to, tag, MPI_COMM_WORLD, &request), "MPI_Isend");
+  wait_napping([&] {
+    int sent = 0;
+    check(MPI_Test(&request, &sent, MPI_STATUS_IGNORE), "MPI_Test");
+    return sent != 0;
+  });
 }
 
 bool Communicator::pending(int from, int tag) const {
@@ -65,15 +83,12 @@ bool Communicator::pending(int from, int tag) const {
 
 std::string Communicator::receive(int from, int tag, int* sender) const {
   if (!mpi_) no_mpi();
-  // Probe and sleep: a blocking MPI_Recv would spin on the core.
-  int flag = 0;
   MPI_Status st;
-  for (auto nap = std::chrono::microseconds(50);;) {
+  wait_napping([&] {
+    int flag = 0;
     check(MPI_Iprobe(from == kAnyRank ? MPI_ANY_SOURCE : from, tag, MPI_COMM_WORLD, &flag, &st), "MPI_Iprobe");
-    if (flag) break;
-    std::this_thread::sleep_for(nap);
-    if (nap < std::chrono::milliseconds(2)) nap *= 2;
-  }
+    return flag != 0;
+  });
   int count = 0;
   check(MPI_Get_count(&st, MPI_BYTE, &count), "MPI_Get_count");
   std::string bytes(static_cast<std::size_t>(count), '\0');

@@ -26,7 +26,8 @@ class Communicator {
   int size() const { return size_; }
   bool root() const { return rank_ == 0; }
 
-  // Point to point; `tag` keeps message kinds apart.
+  // Point to point; `tag` keeps message kinds apart. Returns once `bytes`
+  // may be reused; the sending rank sleeps while the receiver is not ready.
   void send(int to, int tag, const std::string& bytes) const;
   // Waits for a message from `from` (or kAnyRank) with `tag`; the waiting rank
   // sleeps between polls, so it leaves its core to the threads that compute.

@@ -3,6 +3,8 @@
 // stopped early, or one that loses a rank (SIGKILL) mid-run, resumes from the
 // finished parts with another rank count, byte-identical; bad input is one
 // line from rank 0 and a non-zero exit on every rank, with nothing written.
+// Rank 0 assembles the output while entries are computed; killed, it too
+// leaves parts the next job resumes from.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -88,6 +90,35 @@ class DatasetMpi : public ::testing::Test {
         n += f.path().extension() == ".h5" ? 1 : 0;
     return n;
   }
+  // Runs `mcref dataset ds.toml -o r.h5` on 2 ranks and kills `rank` (SIGKILL)
+  // once r.h5.parts/ holds `parts_done` parts; the job must fail.
+  void kill_rank(int rank, int parts_done) {
+    const std::string job = "cd '" + dir_.string() + "' && exec " +
+                            mcref_ranks_pids(2, "dataset ds.toml -o r.h5 --threads 1 --quiet") + " 2> killed.txt";
+    const pid_t launcher = fork();
+    ASSERT_GE(launcher, 0);
+    if (launcher == 0) {
+      execl("/bin/sh", "sh", "-c", job.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    const std::string pid_file = "pid." + std::to_string(rank);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while ((parts("r.h5") < parts_done || !fs::exists(dir_ / pid_file)) && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    pid_t pid = 0;
+    std::ifstream(dir_ / pid_file) >> pid;
+    ASSERT_GT(pid, 0);
+    ASSERT_EQ(kill(pid, SIGKILL), 0);
+    int status = 0;
+    ASSERT_EQ(waitpid(launcher, &status, 0), launcher);
+    EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the job should fail when a rank dies";
+  }
+  // Files in dir_ whose name starts with `prefix`.
+  int files(const std::string& prefix) const {
+    int n = 0;
+    for (const auto& f : fs::directory_iterator(dir_)) n += f.path().filename().string().rfind(prefix, 0) == 0 ? 1 : 0;
+    return n;
+  }
   fs::path dir_;
 };
 
@@ -123,23 +154,7 @@ TEST_F(DatasetMpi, StoppedJobAndKilledRankResumeWithAnyRankCount) {
   EXPECT_FALSE(fs::exists(dir_ / "r.h5"));
   EXPECT_EQ(parts("r.h5"), 3);
   // Rank 1 of the next job is killed once 2 more entries are done.
-  const std::string job = "cd '" + dir_.string() + "' && exec " + mcref_ranks_pids(2, "dataset ds.toml -o r.h5 --threads 1 --quiet") + " 2> killed.txt";
-  const pid_t launcher = fork();
-  ASSERT_GE(launcher, 0);
-  if (launcher == 0) {
-    execl("/bin/sh", "sh", "-c", job.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while ((parts("r.h5") < 5 || !fs::exists(dir_ / "pid.1")) && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  pid_t rank1 = 0;
-  std::ifstream(dir_ / "pid.1") >> rank1;
-  ASSERT_GT(rank1, 0);
-  ASSERT_EQ(kill(rank1, SIGKILL), 0);
-  int status = 0;
-  ASSERT_EQ(waitpid(launcher, &status, 0), launcher);
-  EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the job should fail when a rank dies";
+  kill_rank(1, 5);
   EXPECT_FALSE(fs::exists(dir_ / "r.h5"));
   const int kept = parts("r.h5");
   EXPECT_GE(kept, 5);
@@ -149,6 +164,26 @@ TEST_F(DatasetMpi, StoppedJobAndKilledRankResumeWithAnyRankCount) {
   EXPECT_NE(err.find("resumed)"), std::string::npos) << err;
   EXPECT_NE(err.find(", " + std::to_string(kept) + " resumed)"), std::string::npos) << err;
   EXPECT_EQ(shell(dir_, "cmp ref.h5 r.h5", nullptr), 0) << "resume under MPI changed the bytes";
+  EXPECT_FALSE(fs::exists(dir_ / "r.h5.parts"));
+}
+
+// Rank 0 assembles r.h5 while the entries are computed: killed midway, it
+// leaves the parts and a temporary r.h5.tmp.<pid>; the rerun removes the
+// temporary and writes the bytes of one process.
+TEST_F(DatasetMpi, KilledRankZeroMidAssemblyResumes) {
+  write(12000, 8);  // 16 entries of about 0.1 s each
+  std::string err;
+  ASSERT_EQ(shell(dir_, mcref("dataset ds.toml -o ref.h5 --threads 1 --quiet"), &err), 0) << err;
+  kill_rank(0, 6);
+  EXPECT_FALSE(fs::exists(dir_ / "r.h5"));
+  EXPECT_EQ(files("r.h5.tmp."), 1) << "rank 0's assembly should have been under way";
+  const int kept = parts("r.h5");
+  EXPECT_GE(kept, 6);
+  EXPECT_LT(kept, 16) << "the kill came too late to test a resume";
+  ASSERT_EQ(shell(dir_, mcref_ranks(2, "dataset ds.toml -o r.h5 --threads 1"), &err), 0) << err;
+  EXPECT_NE(err.find(", " + std::to_string(kept) + " resumed)"), std::string::npos) << err;
+  EXPECT_EQ(shell(dir_, "cmp ref.h5 r.h5", nullptr), 0) << "resume after losing rank 0 changed the bytes";
+  EXPECT_EQ(files("r.h5.tmp."), 0) << "the killed assembly's temporary was not removed";
   EXPECT_FALSE(fs::exists(dir_ / "r.h5.parts"));
 }
 
