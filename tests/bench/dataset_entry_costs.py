@@ -17,7 +17,7 @@ one row an entry:
 (1: the paper's 10^5 paths per incident direction; 0: one path, the entry's
 fixed cost). `--subset K` runs K entries spread over the sample (for a
 second run at another scale); `--part K/N` runs every N-th of them, from the
-K-th (N processes side by side). `--orders` also keeps the tables of orders 2,
+K-th (N processes side by side); `--skip R` leaves out the first R rows. `--orders` also keeps the tables of orders 2,
 3 and 4+ and adds columns: ms_cells, the reflection and transmission cells
 the multiple scattering (orders >= 2) reaches, and ms_rse, their median
 relative standard error, sqrt(se2^2 + se3^2 + se4+^2) / (v2 + v3 + v4+)
@@ -63,6 +63,7 @@ def main():
     ap.add_argument("mcref")
     ap.add_argument("--sample", type=int, default=50, help="entries in all, drawn in proportion to the datasets")
     ap.add_argument("--subset", type=int, default=0, help="run only this many entries, spread over the sample")
+    ap.add_argument("--skip", type=int, default=0, help="leave out the sample's first rows (already measured)")
     ap.add_argument("--part", default="0/1", help="K/N: only rows k with k %% N == K (to run N processes side by side)")
     ap.add_argument("--paths-scale", type=float, default=1.0)
     ap.add_argument("--threads", type=int, default=1)
@@ -91,7 +92,7 @@ def main():
         if args.subset:
             sample = [sample[k * len(sample) // args.subset] for k in range(args.subset)]
         k, n = (int(x) for x in args.part.split("/"))
-        sample = sample[k::n]
+        sample = sample[args.skip:][k::n]
         out = os.path.join(work, "e.h5")
         planning = {}
         for name, entries in DATASETS.items():
