@@ -79,7 +79,7 @@ bool laterally_uniform(const openvdb::FloatGrid& grid) {
 
 }  // namespace
 
-std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_block) {
+std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_block, int reach) {
   const SlabGeometry& geo = g.geometry();
   const int n = geo.grid.lateral_voxels, nz = geo.grid.depth_voxels;
   std::vector<LayerMajorants> out;
@@ -143,6 +143,23 @@ std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_b
       L.row_hi.push_back(row_hi);
       L.faces.push_back(r1 == nz ? bottom : bottom - (nz - r1) * hz);
       r0 = r1;
+    }
+    if (m > 1) {  // per quadrant of the direction: the max over the (r + 1)^2 cells ahead, wrapped
+      const int r = L.reach = std::clamp(reach, 1, m - 1);
+      const std::size_t cells = L.hi.size();
+      L.ahead_hi.resize(4 * cells);
+      for (int q = 0; q < 4; ++q) {
+        const int sx = q & 1 ? -1 : 1, sy = q & 2 ? -1 : 1;
+        for (std::size_t z = 0; z < L.row_hi.size(); ++z)
+          for (int cj = 0; cj < m; ++cj)
+            for (int ci = 0; ci < m; ++ci) {
+              double best = 0;
+              for (int a = 0; a <= r; ++a)
+                for (int b = 0; b <= r; ++b)
+                  best = std::max(best, L.hi[(z * m + (cj + sy * a + m) % m) * m + (ci + sx * b + m) % m]);
+              L.ahead_hi[q * cells + (z * m + cj) * m + ci] = best;
+            }
+      }
     }
     out.push_back(std::move(L));
     top = bottom;
