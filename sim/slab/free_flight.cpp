@@ -122,7 +122,7 @@ class GridFlight final : public FreeFlight {
       const double mu = M.hi[iz] * f;
       if (tau < mu * (tz - t)) {
         t += tau / mu;
-        if (accept(M, M.hi[iz], M.lo[iz], p.layer, p.x + p.d.x * t, p.y + p.d.y * t, p.depth - p.d.z * t, p.d, rng)) {
+        if (accept(M, M.hi[iz], iz, p.layer, p.x + p.d.x * t, p.y + p.d.y * t, p.depth - p.d.z * t, p.d, rng)) {
           p.advance(t);
           return Leg::kCollision;
         }
@@ -188,7 +188,7 @@ class GridFlight final : public FreeFlight {
         move(tau / mu);
         CNT(g_counts.tent++);
         const std::size_t cell = (static_cast<std::size_t>(iz) * m + iy) * m + ix;
-        if (accept(M, hi, M.lo[cell], p.layer, (ix + fx) * M.cell_size, (iy + fy) * M.cell_size, p.depth, p.d, rng)) break;
+        if (accept(M, hi, cell, p.layer, (ix + fx) * M.cell_size, (iy + fy) * M.cell_size, p.depth, p.d, rng)) break;
         tau = -std::log1p(-rng.uniform());  // null collision: memoryless restart
         CNT(g_counts.nulls++);
         continue;
@@ -222,12 +222,13 @@ class GridFlight final : public FreeFlight {
     return leg;
   }
 
-  // Whether a tentative collision at (x, y, depth) of `layer`, drawn against the
-  // majorant hi factor(w) (lo: the least density of the point's cell), is real:
-  // with probability sigma_t(x, w) / (hi factor(w)).
-  bool accept(const LayerMajorants& M, double hi, double lo, int layer, double x, double y, double depth, Vec3 d, Rng& rng) {
+  // Whether a tentative collision at (x, y, depth) of `layer`, in `cell`, drawn
+  // against the majorant hi factor(w) (the cell's or its box's), is real: with
+  // probability sigma_t(x, w) / (hi factor(w)).
+  bool accept(const LayerMajorants& M, double hi, std::size_t cell, int layer, double x, double y, double depth, Vec3 d, Rng& rng) {
     const double u = rng.uniform() * hi;
-    if (u < lo) return true;  // below the cell's least density: no lookup needed
+    if (u < M.lo[cell]) return true;    // below the cell's least density: no lookup needed
+    if (u >= M.hi[cell]) return false;  // above its majorant (hi > the cell's: a box's)
     CNT(g_counts.lookups++);
     return accept_looked_up(M.s_varies, u, layer, x, y, depth, d);
   }
