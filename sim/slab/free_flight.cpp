@@ -6,19 +6,8 @@
 #include "sim/slab/density_grid.h"
 #include "sim/slab/voxel_density.h"
 
-#include <atomic>
-#include <cstdio>
-#ifdef MCREF_FLIGHT_COUNTS
-#define CNT(x) x
-#else
-#define CNT(x)
-#endif
 namespace mcref::volume {
-#ifdef MCREF_FLIGHT_COUNTS
-struct Counts { std::atomic<long> flights{0}, tent{0}, exits{0}, lookups{0}, nulls{0};
-  ~Counts(){ std::fprintf(stderr, "flights %ld tentative/flight %.3f exits/flight %.3f lookups/flight %.3f nulls/flight %.3f\n", flights.load(), tent*1.0/flights, exits*1.0/flights, lookups*1.0/flights, nulls*1.0/flights);} };
-Counts g_counts;
-#endif
+
 namespace {
 
 // Puts the photon on the face of its layer it reached (the bottom if it goes
@@ -163,7 +152,6 @@ class GridFlight final : public FreeFlight {
     fx -= ix;
     fy -= iy;
     int iz = static_cast<int>(std::upper_bound(M.faces.begin() + 1, M.faces.end() - 1, p.depth) - (M.faces.begin() + 1));
-    CNT(g_counts.flights++);
     if (rate == 0 && !(M.row_hi[iz] > 0)) return Leg::kLost;  // horizontal in empty cells (measure zero)
     const auto wrap_cell = [m](int i) { return i >= m ? i - m : i < 0 ? i + m : i; };
     // Moves the photon by s (within its box) and makes its cell the next box's start.
@@ -186,14 +174,11 @@ class GridFlight final : public FreeFlight {
       const double e = std::min(std::min(ex, ey), ez);  // (std::fmin is a libm call)
       if (tau < mu * e) {  // a tentative collision in the box
         move(tau / mu);
-        CNT(g_counts.tent++);
         const std::size_t cell = (static_cast<std::size_t>(iz) * m + iy) * m + ix;
         if (accept(M, hi, cell, p.layer, (ix + fx) * M.cell_size, (iy + fy) * M.cell_size, p.depth, p.d, rng)) break;
         tau = -std::log1p(-rng.uniform());  // null collision: memoryless restart
-        CNT(g_counts.nulls++);
         continue;
       }
-      CNT(g_counts.exits++);
       if (!std::isfinite(e) || (rate == 0 && ++exits > (1L << 24))) {  // horizontal along empty cells (measure zero)
         leg = Leg::kLost;
         break;
@@ -229,7 +214,6 @@ class GridFlight final : public FreeFlight {
     const double u = rng.uniform() * hi;
     if (u < M.lo[cell]) return true;    // below the cell's least density: no lookup needed
     if (u >= M.hi[cell]) return false;  // above its majorant (hi > the cell's: a box's)
-    CNT(g_counts.lookups++);
     return accept_looked_up(M.s_varies, u, layer, x, y, depth, d);
   }
   // The rest of accept(), out of line: u < sigma_t(x, w) / factor(w), read from the voxels.

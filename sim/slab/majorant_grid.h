@@ -61,7 +61,8 @@ struct LayerMajorants {
 // The majorants of every layer of the grids (as they are when built);
 // lateral_block voxel columns per cell side (a divisor of lateral_voxels; 1: the
 // default, one cell per voxel column; lateral_voxels: one per layer and depth run);
-// reach: r of ahead_hi (clamped to [1, lateral - 1]).
-std::vector<LayerMajorants> build_majorants(const DensityGrids& grids, int lateral_block = 1, int reach = 1);
+// reach: r of ahead_hi (clamped to [1, lateral - 1]; 0: the cells in a mean free path
+// at the mean of hi and the largest factor(w), rounded).
+std::vector<LayerMajorants> build_majorants(const DensityGrids& grids, int lateral_block = 1, int reach = 0);
 
 }  // namespace mcref::volume

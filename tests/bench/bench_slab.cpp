@@ -40,7 +40,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 
 #include "models/sggx/sggx_distribution.h"
@@ -121,10 +120,9 @@ std::unique_ptr<volume::SlabMedium> heterogeneous(const std::string& kind) {
   for (const openvdb::FloatGrid::Ptr& grid : grids->grids())
     for (auto it = grid->beginValueOn(); it; ++it) {
       const openvdb::Coord c = it.getCoord();
-      it.setValue(*it * static_cast<float>(1 + (std::getenv("MCREF_AMP") ? std::atof(std::getenv("MCREF_AMP")) : 0.5) * std::cos(2 * kPi * c.x() / n) * std::cos(2 * kPi * c.y() / n)));
+      it.setValue(*it * static_cast<float>(1 + 0.5 * std::cos(2 * kPi * c.x() / n) * std::cos(2 * kPi * c.y() / n)));
     }
-  const char* reach = std::getenv("MCREF_REACH");  // TEMP
-  return std::make_unique<volume::SlabMedium>(g, std::move(grids), 1, reach ? std::atoi(reach) : 1);
+  return std::make_unique<volume::SlabMedium>(g, std::move(grids));
 }
 
 // CPU time of the whole process (all threads), s.

@@ -257,12 +257,13 @@ samples = 20000
 // Delta tracking is exact for any majorant that bounds the extinction: on a
 // laterally varying layer (density times 1 + 0.5 cos(2 pi x) cos(2 pi y) on a
 // unit tile of 16 x 16 voxel columns, SGGX surface-like, alpha 0.5, albedo 1,
-// theta_i = 60 deg), flights against voxel-column cells walked with the DDA and
-// against one cell per layer (no DDA, 3x the null collisions) agree in the
-// reflectance, the mean number of scattering events per path and the mean depth
-// of the first event (the bottom face if none), each within 4.5 combined
-// standard errors (2^17 paths each, seeds 5 and 6; the family of 3 fails by
-// chance with probability < 2e-5).
+// theta_i = 60 deg), flights against one cell per layer (no boxes, 3x the null
+// collisions) and against boxes of voxel-column cells ahead of the photon
+// (reach 1, the automatic reach, 15: the whole tile) agree in the reflectance, the
+// mean number of scattering events per path and the mean depth of the first
+// event (the bottom face if none), each within 4.5 combined standard errors
+// (2^17 paths each, seeds 5, 7, 8 for the boxes and 6 for one cell; the
+// family of 9 fails by chance with probability < 7e-5).
 TEST(SlabMajorants, LateralFlightsDoNotDependOnTheCellSize) {
   const Experiment ex = parse_experiment(R"([geometry]
 kind = "slab"
@@ -280,14 +281,14 @@ theta_i_deg = [30]
 samples = 1
 )", "lateral.toml");
   const SlabGeometry& g = ex.slab;
-  const auto lateral_medium = [&](int block) {
+  const auto lateral_medium = [&](int block, int reach) {
     auto grids = std::make_unique<volume::DensityGrids>(g);
     const int n = g.grid.lateral_voxels;
     for (auto it = grids->grids()[0]->beginValueOn(); it; ++it) {
       const openvdb::Coord c = it.getCoord();
       it.setValue(*it * static_cast<float>(1 + 0.5 * std::cos(2 * kPi * c.x() / n) * std::cos(2 * kPi * c.y() / n)));
     }
-    return std::make_unique<volume::SlabMedium>(g, std::move(grids), block);
+    return std::make_unique<volume::SlabMedium>(g, std::move(grids), block, reach);
   };
   struct Moments {
     double n = 0, sum[3] = {0, 0, 0}, sq[3] = {0, 0, 0};
@@ -323,13 +324,20 @@ samples = 1
     }
     return s;
   };
-  const auto fine = lateral_medium(1), coarse = lateral_medium(g.grid.lateral_voxels);
-  ASSERT_EQ(fine->majorants()[0].lateral, 16);
+  const auto coarse = lateral_medium(g.grid.lateral_voxels, 0);
   ASSERT_EQ(coarse->majorants()[0].lateral, 1);
-  const Moments a = run(*fine, 5), b = run(*coarse, 6);
+  const Moments b = run(*coarse, 6);
   const char* names[3] = {"reflectance", "events per path", "first event depth"};
-  for (int i = 0; i < 3; ++i) {
-    const double z = (a.mean(i) - b.mean(i)) / std::sqrt(a.var_mean(i) + b.var_mean(i));
-    EXPECT_LT(std::fabs(z), 4.5) << names[i] << ": voxel-column cells " << a.mean(i) << ", one cell " << b.mean(i);
+  std::uint64_t seed = 7;
+  for (const int reach : {1, 0, 15}) {
+    const auto fine = lateral_medium(1, reach);
+    ASSERT_EQ(fine->majorants()[0].lateral, 16);
+    const int r = fine->majorants()[0].reach;
+    if (reach == 0) EXPECT_EQ(r, 5);  // 16 cells per unit tile, mean free path about 1 / 3.3
+    const Moments a = run(*fine, reach == 1 ? 5 : seed++);
+    for (int i = 0; i < 3; ++i) {
+      const double z = (a.mean(i) - b.mean(i)) / std::sqrt(a.var_mean(i) + b.var_mean(i));
+      EXPECT_LT(std::fabs(z), 4.5) << names[i] << ": boxes of reach " << r << " " << a.mean(i) << ", one cell " << b.mean(i);
+    }
   }
 }
