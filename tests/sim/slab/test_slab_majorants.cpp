@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <sstream>
 #include <string>
 
@@ -143,6 +144,24 @@ void expect_same_moments(const Moments& a, const Moments& b, const std::string& 
   for (int i = 0; i < 3; ++i) {
     const double z = (a.mean(i) - b.mean(i)) / std::sqrt(a.var_mean(i) + b.var_mean(i));
     EXPECT_LT(std::fabs(z), 4.5) << names[i] << ": " << what << " " << a.mean(i) << ", one cell " << b.mean(i);
+  }
+}
+
+// Flights against one cell per layer and depth run (lateral_block =
+// lateral_voxels) and against boxes of each reach (0: the automatic one) agree
+// (expect_same_moments); seeds: `seed` for one cell, seed + 1, ... for the boxes.
+void expect_boxes_agree_with_one_cell(const std::function<std::unique_ptr<volume::SlabMedium>(int, int)>& medium,
+                                      const SlabGeometry& g, Vec3 wi, int paths, std::uint64_t seed,
+                                      std::initializer_list<int> reaches) {
+  const auto coarse = medium(g.grid.lateral_voxels, 0);
+  for (const volume::LayerMajorants& M : coarse->majorants()) ASSERT_EQ(M.lateral, 1);
+  const Moments b = flight_moments(*coarse, wi, paths, seed);
+  for (const int reach : reaches) {
+    const auto fine = medium(1, reach);
+    std::string what = "boxes of reach";
+    for (const volume::LayerMajorants& M : fine->majorants())
+      if (M.lateral > 1) what += " " + std::to_string(M.reach);
+    expect_same_moments(flight_moments(*fine, wi, paths, ++seed), b, what);
   }
 }
 
@@ -312,7 +331,7 @@ samples = 20000
 // (reach 1, the automatic reach, 15: the whole tile) agree in the reflectance, the
 // mean number of scattering events per path and the mean depth of the first
 // event (the bottom face if none), each within 4.5 combined standard errors
-// (2^17 paths each, seeds 5, 7, 8 for the boxes and 6 for one cell; the
+// (2^17 paths each, seeds 7, 8, 9 for the boxes and 6 for one cell; the
 // family of 9 fails by chance with probability < 7e-5).
 TEST(SlabMajorants, LateralFlightsDoNotDependOnTheCellSize) {
   const Experiment ex = parse_experiment(R"([geometry]
@@ -340,20 +359,10 @@ samples = 1
     }
     return std::make_unique<volume::SlabMedium>(g, std::move(grids), block, reach);
   };
-  const auto coarse = lateral_medium(g.grid.lateral_voxels, 0);
-  ASSERT_EQ(coarse->majorants()[0].lateral, 1);
-  const Vec3 wi = spherical_direction(60 * kPi / 180, 0.3);
-  const Moments b = flight_moments(*coarse, wi, 1 << 17, 6);
-  std::uint64_t seed = 7;
-  for (const int reach : {1, 0, 15}) {
-    const auto fine = lateral_medium(1, reach);
-    ASSERT_EQ(fine->majorants()[0].lateral, 16);
-    const int r = fine->majorants()[0].reach;
-    if (reach == 0) {
-      EXPECT_EQ(r, 5);  // 16 cells per unit tile, mean free path about 1 / 3.3
-    }
-    expect_same_moments(flight_moments(*fine, wi, 1 << 17, reach == 1 ? 5 : seed++), b, "boxes of reach " + std::to_string(r));
-  }
+  const auto automatic = lateral_medium(1, 0);
+  ASSERT_EQ(automatic->majorants()[0].lateral, 16);
+  EXPECT_EQ(automatic->majorants()[0].reach, 5);  // 16 cells per unit tile, mean free path about 1 / 3.3
+  expect_boxes_agree_with_one_cell(lateral_medium, g, spherical_direction(60 * kPi / 180, 0.3), 1 << 17, 6, {1, 0, 15});
 }
 
 // The same on the random three-layer stack of the tests above (laterally varying
@@ -370,17 +379,7 @@ TEST(SlabMajorants, BoxFlightsAgreeWithOneCellOnARandomStack) {
     Rng rng(2024);
     return std::make_unique<volume::SlabMedium>(g, random_grids(g, rng), block, reach);
   };
-  const auto coarse = medium(g.grid.lateral_voxels, 0);
-  for (int k = 0; k < 3; ++k) ASSERT_EQ(coarse->majorants()[k].lateral, 1);
-  const Vec3 wi = spherical_direction(40 * kPi / 180, 1.1);
-  const Moments b = flight_moments(*coarse, wi, 1 << 16, 20);
-  std::uint64_t seed = 21;
-  for (const int reach : {1, 0, 4}) {
-    const auto fine = medium(1, reach);
-    ASSERT_EQ(fine->majorants()[0].lateral, 5);
-    ASSERT_EQ(fine->majorants()[2].lateral, 5);
-    expect_same_moments(flight_moments(*fine, wi, 1 << 16, seed++), b,
-                        "boxes of reach " + std::to_string(fine->majorants()[0].reach) + ", " +
-                            std::to_string(fine->majorants()[2].reach));
-  }
+  ASSERT_EQ(medium(1, 0)->majorants()[0].lateral, 5);
+  ASSERT_EQ(medium(1, 0)->majorants()[2].lateral, 5);
+  expect_boxes_agree_with_one_cell(medium, g, spherical_direction(40 * kPi / 180, 1.1), 1 << 16, 20, {1, 0, 4});
 }
