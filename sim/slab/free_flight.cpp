@@ -59,80 +59,31 @@ class HomogeneousFlight final : public FreeFlight {
   const SlabMedium& m_;
 };
 
-// Delta tracking against the per-cell majorants hi(cell) factor(w)
-// (sim/slab/majorant_grid.h), walking the cells along the ray with a 3-D DDA
-// (Amanatides & Woo 1987): lateral cells wrap around the tile, depth cells end
-// at the layer's faces, where the loop moves to the next layer as track() does.
+// Delta tracking against per-cell majorants (sim/slab/majorant_grid.h), layer by
+// layer along the ray, the optical depth carried across the layers' faces as
+// track() does:
+//  - a laterally uniform layer: hi(cell) factor(w) in its depth cells, walked
+//    with a DDA in depth (Amanatides & Woo 1987);
+//  - a laterally varying layer: ahead_hi(cell) factor(w), the majorant of the box
+//    of (r + 1)^2 lateral cells from the photon's cell r cells ahead along x and
+//    y (in its depth cell), until a tentative collision or the box's far faces,
+//    where the photon's cell starts the next box (the rest of the optical depth
+//    carried: the Poisson process of tentative collisions is memoryless).
+//    No DDA: most flights end in their first box.
 class GridFlight final : public FreeFlight {
+  enum class Leg { kCollision, kFace, kLost };
+
  public:
   explicit GridFlight(const SlabMedium& m) : m_(m), voxels_(*m.voxels()), lookup_(*m.grids()) {}
   Flight fly(Photon& p, Rng& rng) override {
     have_s_ = false;
-    const std::vector<MediumLayer>& layers = m_.layers();
-    const double rate = -p.d.z, inv_rate = 1 / rate;
-    // Once per flight (the direction is fixed): the inverse direction cosines.
-    const double inv_dx = 1 / p.d.x, inv_dy = 1 / p.d.y;
-    const int sx = p.d.x > 0 ? 1 : -1, sy = p.d.y > 0 ? 1 : -1;
     double tau = -std::log1p(-rng.uniform());
     for (;;) {
       const LayerMajorants& M = m_.majorants()[p.layer];
-      const double f = M.factor(p.d);
-      const int m = M.lateral;
-      // The cell holding the photon (on a face: the cell below it).
-      int iz = static_cast<int>(std::upper_bound(M.faces.begin() + 1, M.faces.end() - 1, p.depth) - (M.faces.begin() + 1));
-      int ix = 0, iy = 0;
-      double tx = INFINITY, ty = INFINITY, dtx = 0, dty = 0;
-      if (m > 1) {  // lateral position in cell units, wrapped into the tile
-        const double c = M.cell_size, inv_m = 1.0 / m;
-        const double xc = wrap_periodic(p.x * M.inv_cell_size, m, inv_m), yc = wrap_periodic(p.y * M.inv_cell_size, m, inv_m);
-        ix = static_cast<int>(xc);
-        iy = static_cast<int>(yc);
-        if (p.d.x != 0) {
-          dtx = c * std::fabs(inv_dx);
-          tx = ((ix + (sx > 0)) - xc) * c * inv_dx;
-        }
-        if (p.d.y != 0) {
-          dty = c * std::fabs(inv_dy);
-          ty = ((iy + (sy > 0)) - yc) * c * inv_dy;
-        }
-      }
-      const auto face_t = [&](int cell) {
-        return rate > 0 ? (M.faces[cell + 1] - p.depth) * inv_rate : rate < 0 ? (M.faces[cell] - p.depth) * inv_rate : INFINITY;
-      };
-      // Horizontal (measure zero) in a row of empty cells: no collision ever.
-      if (rate == 0 && !(M.row_hi[iz] > 0)) return Flight::kLost;
-      double tz = face_t(iz), t = 0;
-      for (long lateral_steps = 0;;) {
-        const std::size_t cell = (static_cast<std::size_t>(iz) * m + iy) * m + ix;
-        const double mu = M.hi[cell] * f, t_exit = std::min({tx, ty, tz});
-        if (tau < mu * (t_exit - t)) {
-          t += tau / mu;
-          if (accept(M, cell, p, t, rng)) {
-            p.advance(t);
-            return Flight::kCollision;
-          }
-          tau = -std::log1p(-rng.uniform());  // null collision: memoryless restart
-          continue;
-        }
-        if (!std::isfinite(t_exit)) return Flight::kLost;  // horizontal in an empty layer (measure zero)
-        tau -= mu * (t_exit - t);
-        t = t_exit;
-        if (t_exit == tz) {
-          iz += rate > 0 ? 1 : -1;
-          if (iz < 0 || iz == M.depth_cells()) break;
-          tz = face_t(iz);
-        } else {  // the next lateral cell, without branches on the (random) axis
-          if (rate == 0 && ++lateral_steps > (1L << 24)) return Flight::kLost;  // horizontal along empty cells
-          const bool step_x = tx <= ty;
-          const int nx = ix + sx, ny = iy + sy;
-          ix = step_x ? (nx == m ? 0 : nx < 0 ? m - 1 : nx) : ix;
-          iy = step_x ? iy : (ny == m ? 0 : ny < 0 ? m - 1 : ny);
-          tx += step_x ? dtx : 0.0;
-          ty += step_x ? 0.0 : dty;
-        }
-      }
-      p.advance(t);  // through a face of the layer
-      if (Flight exit; !cross_face(layers, p, exit)) return exit;
+      const Leg leg = M.lateral > 1 ? fly_boxes(M, p, tau, rng) : fly_depth(M, p, tau, rng);
+      if (leg == Leg::kCollision) return Flight::kCollision;
+      if (leg == Leg::kLost) return Flight::kLost;
+      if (Flight exit; !cross_face(m_.layers(), p, exit)) return exit;
     }
   }
   ScatterSample scatter(const MediumLayer& layer, int k, Vec3 wi, Rng& rng) override {
@@ -144,16 +95,133 @@ class GridFlight final : public FreeFlight {
   double lateral_period() const override { return m_.geometry().grid.tile; }
 
  private:
-  // Whether the tentative collision at p + t d (in `cell` of the photon's layer)
-  // is real: with probability sigma_t(x, w) / (hi(cell) factor(w)).
-  bool accept(const LayerMajorants& M, std::size_t cell, const Photon& p, double t, Rng& rng) {
-    const double u = rng.uniform() * M.hi[cell];
-    if (u < M.lo[cell]) return true;  // below the cell's least density: no lookup needed
-    const double x = p.x + p.d.x * t, y = p.y + p.d.y * t, depth = p.depth - p.d.z * t;
-    if (!M.s_varies) return u < voxels_.density(p.layer, x, y, depth);
+  // A laterally uniform layer: the depth cells along the ray; tau is the
+  // optical depth left (carried to the next layer if the photon reaches a face).
+  Leg fly_depth(const LayerMajorants& M, Photon& p, double& tau, Rng& rng) {
+    const double rate = -p.d.z, inv_rate = 1 / rate, f = M.factor(p.d);
+    // The cell holding the photon (on a face: the cell below it).
+    int iz = static_cast<int>(std::upper_bound(M.faces.begin() + 1, M.faces.end() - 1, p.depth) - (M.faces.begin() + 1));
+    const auto face_t = [&](int cell) {
+      return rate > 0 ? (M.faces[cell + 1] - p.depth) * inv_rate : rate < 0 ? (M.faces[cell] - p.depth) * inv_rate : INFINITY;
+    };
+    // Horizontal (measure zero) in a row of empty cells: no collision ever.
+    if (rate == 0 && !(M.row_hi[iz] > 0)) return Leg::kLost;
+    double tz = face_t(iz), t = 0;
+    for (;;) {
+      const double mu = M.hi[iz] * f;
+      if (tau < mu * (tz - t)) {
+        t += tau / mu;
+        if (accept(M, M.hi[iz], iz, p.layer, p.x + p.d.x * t, p.y + p.d.y * t, p.depth - p.d.z * t, p.d, rng)) {
+          p.advance(t);
+          return Leg::kCollision;
+        }
+        tau = -std::log1p(-rng.uniform());  // null collision: memoryless restart
+        continue;
+      }
+      if (!std::isfinite(tz)) return Leg::kLost;  // horizontal in an empty layer (measure zero)
+      tau -= mu * (tz - t);
+      t = tz;
+      iz += rate > 0 ? 1 : -1;
+      if (iz < 0 || iz == M.depth_cells()) break;
+      tz = face_t(iz);
+    }
+    p.advance(t);  // through a face of the layer
+    return Leg::kFace;
+  }
+
+  // A laterally varying layer: boxes of cells ahead of the photon (above). The
+  // photon's lateral position is kept as its cell (ix, iy) in the tile and its
+  // offset (fx, fy) in [0, 1] in that cell, in cell units; p.x, p.y are written
+  // back in the tile, [0, tile]. The box's far faces are r + 1 (going +) or -r
+  // (going -) from the cell's low face; per axis, the distance to it is
+  // (far - offset) / velocity, +inf when the velocity is +-0 (r >= 1).
+  Leg fly_boxes(const LayerMajorants& M, Photon& p, double& tau, Rng& rng) {
+    const int m = M.lateral, r = M.reach;
+    const double* ahead = M.ahead_hi.data() + (p.d.x < 0) * M.hi.size() + (p.d.y < 0) * 2 * M.hi.size();
+    const double rate = -p.d.z, f = M.factor(p.d), dx = p.d.x * M.inv_cell_size, dy = p.d.y * M.inv_cell_size;
+    const double inv_dx = 1 / dx, inv_dy = 1 / dy, inv_rate = 1 / rate;
+    const bool back_x = std::signbit(dx), back_y = std::signbit(dy), up = rate < 0;
+    const double far_x = back_x ? -r : r + 1, far_y = back_y ? -r : r + 1;
+    // Past a far face: the next box starts in the cell beyond it, on its near face.
+    const int step_x = back_x ? -r - 1 : r + 1, step_y = back_y ? -r - 1 : r + 1;
+    const double enter_x = back_x ? 1.0 : 0.0, enter_y = back_y ? 1.0 : 0.0;
+    double fx = p.x * M.inv_cell_size, fy = p.y * M.inv_cell_size;
+    if (!(fx >= 0 && fx < m)) fx = wrap_periodic(fx, m, 1.0 / m);
+    if (!(fy >= 0 && fy < m)) fy = wrap_periodic(fy, m, 1.0 / m);
+    int ix = std::min(static_cast<int>(fx), m - 1), iy = std::min(static_cast<int>(fy), m - 1);
+    fx -= ix;
+    fy -= iy;
+    int iz = static_cast<int>(std::upper_bound(M.faces.begin() + 1, M.faces.end() - 1, p.depth) - (M.faces.begin() + 1));
+    if (rate == 0 && !(M.row_hi[iz] > 0)) return Leg::kLost;  // horizontal in empty cells (measure zero)
+    const auto wrap_cell = [m](int i) { return i >= m ? i - m : i < 0 ? i + m : i; };
+    // Moves the photon by s (within its box) and makes its cell the next box's start.
+    const auto move = [&](double s) {
+      const int floor_shift = r + 2;  // offsets stay above -(r + 2): an integer cast floors them
+      const double x1 = fx + dx * s, y1 = fy + dy * s;
+      const int kx = static_cast<int>(x1 + floor_shift) - floor_shift, ky = static_cast<int>(y1 + floor_shift) - floor_shift;
+      fx = x1 - kx;
+      fy = y1 - ky;
+      ix = wrap_cell(ix + kx);
+      iy = wrap_cell(iy + ky);
+      p.depth += rate * s;
+    };
+    Leg leg = Leg::kCollision;
+    for (long exits = 0;;) {
+      const std::size_t box = (static_cast<std::size_t>(iz) * m + iy) * m + ix;
+      const double hi = ahead[box], mu = hi * f;
+      const double face = M.faces[iz + !up];
+      const double ex = (far_x - fx) * inv_dx, ey = (far_y - fy) * inv_dy, ez = rate != 0 ? (face - p.depth) * inv_rate : INFINITY;
+      const double e = std::min(std::min(ex, ey), ez);  // (std::fmin is a libm call)
+      if (tau < mu * e) {  // a tentative collision in the box
+        move(tau / mu);
+        const std::size_t cell = (static_cast<std::size_t>(iz) * m + iy) * m + ix;
+        if (accept(M, hi, cell, p.layer, (ix + fx) * M.cell_size, (iy + fy) * M.cell_size, p.depth, p.d, rng)) break;
+        tau = -std::log1p(-rng.uniform());  // null collision: memoryless restart
+        continue;
+      }
+      if (!std::isfinite(e) || (rate == 0 && ++exits > (1L << 24))) {  // horizontal along empty cells (measure zero)
+        leg = Leg::kLost;
+        break;
+      }
+      tau -= mu * e;
+      const int ix0 = ix, iy0 = iy;
+      move(e);
+      if (e == ez) {  // exactly on the depth face; into the next depth cell or out of the layer
+        p.depth = face;
+        iz += up ? -1 : 1;
+        if (iz < 0 || iz == M.depth_cells()) {
+          leg = Leg::kFace;
+          break;
+        }
+        continue;
+      }
+      // Exactly on the box's lateral face, in the cell beyond it (progress whatever the rounding).
+      const bool hit_x = e == ex, hit_y = e == ey;
+      ix = hit_x ? wrap_cell(ix0 + step_x) : ix;
+      fx = hit_x ? enter_x : fx;
+      iy = hit_y ? wrap_cell(iy0 + step_y) : iy;
+      fy = hit_y ? enter_y : fy;
+    }
+    p.x = (ix + fx) * M.cell_size;
+    p.y = (iy + fy) * M.cell_size;
+    return leg;
+  }
+
+  // Whether a tentative collision at (x, y, depth) of `layer`, in `cell`, drawn
+  // against the majorant hi factor(w) (the cell's or its box's), is real: with
+  // probability sigma_t(x, w) / (hi factor(w)).
+  bool accept(const LayerMajorants& M, double hi, std::size_t cell, int layer, double x, double y, double depth, Vec3 d, Rng& rng) {
+    const double u = rng.uniform() * hi;
+    if (u < M.lo[cell]) return true;    // below the cell's least density: no lookup needed
+    if (u >= M.hi[cell]) return false;  // above its majorant (hi > the cell's: a box's)
+    return accept_looked_up(M.s_varies, u, layer, x, y, depth, d);
+  }
+  // The rest of accept(), out of line: u < sigma_t(x, w) / factor(w), read from the voxels.
+  [[gnu::noinline]] bool accept_looked_up(bool s_varies, double u, int layer, double x, double y, double depth, Vec3 d) {
+    if (!s_varies) return u < voxels_.density(layer, x, y, depth);
     sggx::Mat3 S;
-    const double rho = lookup_.density_and_sggx(p.layer, x, y, depth, S);
-    if (!(u < rho * std::sqrt(std::fmax(0.0, sggx::quadratic_form(S, p.d))))) return false;
+    const double rho = lookup_.density_and_sggx(layer, x, y, depth, S);
+    if (!(u < rho * std::sqrt(std::fmax(0.0, sggx::quadratic_form(S, d))))) return false;
     s_ = sggx::from_matrix(S);  // the event's S: Cholesky factor and inverse for the sampler
     have_s_ = true;
     return true;

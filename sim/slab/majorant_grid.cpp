@@ -79,7 +79,7 @@ bool laterally_uniform(const openvdb::FloatGrid& grid) {
 
 }  // namespace
 
-std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_block) {
+std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_block, int reach) {
   const SlabGeometry& geo = g.geometry();
   const int n = geo.grid.lateral_voxels, nz = geo.grid.depth_voxels;
   std::vector<LayerMajorants> out;
@@ -95,6 +95,8 @@ std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_b
       L.s_varies = !L.one_s;
       if (L.one_s) L.s = sggx::from_matrix(s0);
     }
+    // The largest factor(w) (1 if S varies: hi holds sigma then).
+    const double max_factor = L.one_s ? std::sqrt(std::max(0.0, largest_eigenvalue(read.matrix(0, 0, 0)))) : 1.0;
     const int m = laterally_uniform(*g.grids()[k]) ? 1 : n / lateral_block, b = n / m;
     L.lateral = m;
     L.cell_size = geo.grid.tile / m;
@@ -143,6 +145,27 @@ std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_b
       L.row_hi.push_back(row_hi);
       L.faces.push_back(r1 == nz ? bottom : bottom - (nz - r1) * hz);
       r0 = r1;
+    }
+    if (m > 1) {  // per quadrant of the direction: the max over the (r + 1)^2 cells ahead, wrapped
+      // Automatic reach: the cells in a mean free path at the mean majorant.
+      double mean_hi = 0;
+      for (const double h : L.hi) mean_hi += h / static_cast<double>(L.hi.size());
+      const double free_path_cells = 1 / (mean_hi * max_factor * L.cell_size);
+      const int r = L.reach = std::clamp(reach > 0 ? reach : static_cast<int>(std::lround(std::min(free_path_cells, 1e6))), 1, m - 1);
+      const std::size_t cells = L.hi.size();
+      L.ahead_hi.resize(4 * cells);
+      for (int q = 0; q < 4; ++q) {
+        const int sx = q & 1 ? -1 : 1, sy = q & 2 ? -1 : 1;
+        for (std::size_t z = 0; z < L.row_hi.size(); ++z)
+          for (int cj = 0; cj < m; ++cj)
+            for (int ci = 0; ci < m; ++ci) {
+              double best = 0;
+              for (int a = 0; a <= r; ++a)
+                for (int b = 0; b <= r; ++b)
+                  best = std::max(best, L.hi[(z * m + (cj + sy * a + m) % m) * m + (ci + sx * b + m) % m]);
+              L.ahead_hi[q * cells + (z * m + cj) * m + ci] = best;
+            }
+      }
     }
     out.push_back(std::move(L));
     top = bottom;

@@ -22,7 +22,12 @@
 //    the majorant along w is hi * factor(w), factor(w) = sigma(w; S) for an SGGX
 //    layer with one S everywhere (exact in direction), else 1;
 //  - lo: rho_min for layers whose S does not vary (0 otherwise): a tentative
-//    collision with u hi < lo is real whatever rho(x) is (no lookup needed).
+//    collision with u hi < lo is real whatever rho(x) is (no lookup needed);
+//  - ahead_hi (laterally varying layers), per quadrant q of the direction
+//    (q = [w_x < 0] + 2 [w_y < 0]): the max of hi over the (r + 1)^2 lateral
+//    cells from the cell r cells ahead along x and y (r = reach, wrapped around
+//    the tile), in its depth cell: a majorant in that box, which the flights use
+//    from the photon's cell, restarting where it leaves the box (free_flight.cpp).
 // hi and lo carry a relative margin of kMargin for the single-precision
 // interpolation of the density voxels.
 #include <vector>
@@ -44,6 +49,8 @@ struct LayerMajorants {
   std::vector<double> faces;      // depths of the cell faces, top to bottom (cells + 1)
   std::vector<double> hi, lo;     // per cell, index (depth_cell * m + j) * m + i
   std::vector<double> row_hi;     // max of hi over each depth row of cells
+  int reach = 0;                  // r: lateral cells ahead of the photon's (lateral > 1)
+  std::vector<double> ahead_hi;   // index q * hi.size() + cell: max of hi over the box ahead
   bool one_s = false;             // SGGX layer with one S everywhere (s)
   bool s_varies = false;          // SGGX layer whose S varies: look S up at collisions
   sggx::Sggx s;
@@ -53,7 +60,9 @@ struct LayerMajorants {
 
 // The majorants of every layer of the grids (as they are when built);
 // lateral_block voxel columns per cell side (a divisor of lateral_voxels; 1: the
-// default, one cell per voxel column; lateral_voxels: one per layer and depth run).
-std::vector<LayerMajorants> build_majorants(const DensityGrids& grids, int lateral_block = 1);
+// default, one cell per voxel column; lateral_voxels: one per layer and depth run);
+// reach: r of ahead_hi (clamped to [1, lateral - 1]; 0: the cells in a mean free path
+// at the mean of hi and the largest factor(w), rounded).
+std::vector<LayerMajorants> build_majorants(const DensityGrids& grids, int lateral_block = 1, int reach = 0);
 
 }  // namespace mcref::volume

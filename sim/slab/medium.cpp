@@ -8,7 +8,7 @@ namespace mcref::volume {
 SlabMedium::SlabMedium(const SlabGeometry& g)
     : SlabMedium(g, g.grid.openvdb ? std::make_unique<DensityGrids>(g) : nullptr) {}
 
-SlabMedium::SlabMedium(const SlabGeometry& g, std::unique_ptr<DensityGrids> grids, int lateral_block)
+SlabMedium::SlabMedium(const SlabGeometry& g, std::unique_ptr<DensityGrids> grids, int lateral_block, int reach)
     : geometry_(g), grids_(std::move(grids)) {
   double top = 0;
   for (const SlabLayer& l : g.layers) {
@@ -21,7 +21,7 @@ SlabMedium::SlabMedium(const SlabGeometry& g, std::unique_ptr<DensityGrids> grid
     top += l.thickness;
   }
   if (grids_) {
-    majorants_ = build_majorants(*grids_, lateral_block);
+    majorants_ = build_majorants(*grids_, lateral_block, reach);
     voxels_ = std::make_unique<VoxelDensity>(*grids_);
   }
 }

@@ -27,8 +27,8 @@ class SlabMedium {
   explicit SlabMedium(const SlabGeometry& geometry);
   // Over given grids of that geometry (e.g. with voxels edited after
   // DensityGrids built them); the majorants are read from the grids' voxels
-  // (lateral_block: see build_majorants).
-  SlabMedium(const SlabGeometry& geometry, std::unique_ptr<DensityGrids> grids, int lateral_block = 1);
+  // (lateral_block, reach: see build_majorants).
+  SlabMedium(const SlabGeometry& geometry, std::unique_ptr<DensityGrids> grids, int lateral_block = 1, int reach = 0);
   ~SlabMedium();
   const SlabGeometry& geometry() const { return geometry_; }
   const std::vector<MediumLayer>& layers() const { return layers_; }

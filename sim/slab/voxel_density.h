@@ -11,6 +11,7 @@
 // built: index planes 0 ... N laterally (the stored seam N included) and
 // 0 ... depth_voxels + 1 in depth (the last one, the grid's background, is
 // read with weight 0 on the bottom face, as the sampler reads it).
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -49,8 +50,10 @@ class VoxelDensity {
 
 inline double VoxelDensity::density(int k, double x, double y, double depth) const {
   const Layer& l = layers_[static_cast<std::size_t>(k)];
-  const double ix = wrap_periodic(x * inv_hx_, n_, inv_n_), iy = wrap_periodic(y * inv_hx_, n_, inv_n_);
-  const double iz = std::fmin(nz_, std::fmax(0.0, (l.bottom - depth) * l.inv_hz));
+  double ix = x * inv_hx_, iy = y * inv_hx_;  // in [0, N) already: wrap_periodic would return them as they are
+  if (!(ix >= 0 && ix < n_)) ix = wrap_periodic(ix, n_, inv_n_);
+  if (!(iy >= 0 && iy < n_)) iy = wrap_periodic(iy, n_, inv_n_);
+  const double iz = std::min(nz_, std::max(0.0, (l.bottom - depth) * l.inv_hz));  // (std::fmin is a libm call)
   const int ci = static_cast<int>(ix), cj = static_cast<int>(iy), ck = static_cast<int>(iz);  // >= 0: floor
   const double u = ix - ci, v = iy - cj, w = iz - ck;
   const float* p = l.values.data() + (ci * planes_ + cj) * depth_planes_ + ck;

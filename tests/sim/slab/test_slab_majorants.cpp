@@ -6,12 +6,14 @@
 // density of the dense copy the flights read (VoxelDensity). The voxels
 // are random, the stored periodic seam column included, and so is S in one
 // layer. Also: the dense copy agrees with OpenVDB's sampler; bit-identical
-// tables for 1 and 2 threads on the grid path; lateral flights that do not
-// depend on the cell size of the majorants.
+// tables for 1 and 2 threads on the grid path; lateral flights (boxes of cells
+// ahead of the photon) that agree with flights against one cell per layer.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <sstream>
+#include <string>
 
 #include "models/core/rng.h"
 #include "models/core/warp.h"
@@ -94,6 +96,73 @@ double in_range(double lo, double hi, Rng& rng) {
   if (u < 0.3) return lo + (hi - lo) * 1e-12;
   if (u < 0.4) return hi - (hi - lo) * 1e-12;
   return lo + (hi - lo) * rng.uniform();
+}
+
+// Per path: reflectance (0 or 1), scattering events, depth of the first event
+// (the bottom face if none); sums for their means and standard errors.
+struct Moments {
+  double n = 0, sum[3] = {0, 0, 0}, sq[3] = {0, 0, 0};
+  void add(int i, double v) { sum[i] += v, sq[i] += v * v; }
+  double mean(int i) const { return sum[i] / n; }
+  double var_mean(int i) const { return (sq[i] / n - mean(i) * mean(i)) / (n - 1); }
+};
+
+// Analog paths through the medium's flights (no tally), entering along -wi at a
+// uniform point of the tile.
+Moments flight_moments(const volume::SlabMedium& medium, Vec3 wi, int paths, std::uint64_t seed) {
+  auto flight = volume::make_flight(medium);
+  Rng rng(seed);
+  Moments s;
+  const double tile = medium.geometry().grid.tile;
+  for (int path = 0; path < paths; ++path, ++s.n) {
+    volume::Photon p;
+    p.d = -wi;
+    p.x = rng.uniform() * tile;
+    p.y = rng.uniform() * tile;
+    int events = 0;
+    double first_depth = medium.bottom();
+    for (;;) {
+      const volume::Flight f = flight->fly(p, rng);
+      if (f != volume::Flight::kCollision) {
+        s.add(0, f == volume::Flight::kExitTop ? 1.0 : 0.0);
+        break;
+      }
+      if (events++ == 0) first_depth = p.depth;
+      const volume::ScatterSample sc = flight->scatter(medium.layers()[p.layer], p.layer, -p.d, rng);
+      EXPECT_TRUE(sc.valid);
+      p.d = sc.wo;
+    }
+    s.add(1, events);
+    s.add(2, first_depth);
+  }
+  return s;
+}
+
+// Each of the three means within 4.5 combined standard errors.
+void expect_same_moments(const Moments& a, const Moments& b, const std::string& what) {
+  const char* names[3] = {"reflectance", "events per path", "first event depth"};
+  for (int i = 0; i < 3; ++i) {
+    const double z = (a.mean(i) - b.mean(i)) / std::sqrt(a.var_mean(i) + b.var_mean(i));
+    EXPECT_LT(std::fabs(z), 4.5) << names[i] << ": " << what << " " << a.mean(i) << ", one cell " << b.mean(i);
+  }
+}
+
+// Flights against one cell per layer and depth run (lateral_block =
+// lateral_voxels) and against boxes of each reach (0: the automatic one) agree
+// (expect_same_moments); seeds: `seed` for one cell, seed + 1, ... for the boxes.
+void expect_boxes_agree_with_one_cell(const std::function<std::unique_ptr<volume::SlabMedium>(int, int)>& medium,
+                                      const SlabGeometry& g, Vec3 wi, int paths, std::uint64_t seed,
+                                      std::initializer_list<int> reaches) {
+  const auto coarse = medium(g.grid.lateral_voxels, 0);
+  for (const volume::LayerMajorants& M : coarse->majorants()) ASSERT_EQ(M.lateral, 1);
+  const Moments b = flight_moments(*coarse, wi, paths, seed);
+  for (const int reach : reaches) {
+    const auto fine = medium(1, reach);
+    std::string what = "boxes of reach";
+    for (const volume::LayerMajorants& M : fine->majorants())
+      if (M.lateral > 1) what += " " + std::to_string(M.reach);
+    expect_same_moments(flight_moments(*fine, wi, paths, ++seed), b, what);
+  }
 }
 
 }  // namespace
@@ -257,12 +326,13 @@ samples = 20000
 // Delta tracking is exact for any majorant that bounds the extinction: on a
 // laterally varying layer (density times 1 + 0.5 cos(2 pi x) cos(2 pi y) on a
 // unit tile of 16 x 16 voxel columns, SGGX surface-like, alpha 0.5, albedo 1,
-// theta_i = 60 deg), flights against voxel-column cells walked with the DDA and
-// against one cell per layer (no DDA, 3x the null collisions) agree in the
-// reflectance, the mean number of scattering events per path and the mean depth
-// of the first event (the bottom face if none), each within 4.5 combined
-// standard errors (2^17 paths each, seeds 5 and 6; the family of 3 fails by
-// chance with probability < 2e-5).
+// theta_i = 60 deg), flights against one cell per layer (no boxes, 3x the null
+// collisions) and against boxes of voxel-column cells ahead of the photon
+// (reach 1, the automatic reach, 15: the whole tile) agree in the reflectance, the
+// mean number of scattering events per path and the mean depth of the first
+// event (the bottom face if none), each within 4.5 combined standard errors
+// (2^17 paths each, seeds 7, 8, 9 for the boxes and 6 for one cell; the
+// family of 9 fails by chance with probability < 7e-5).
 TEST(SlabMajorants, LateralFlightsDoNotDependOnTheCellSize) {
   const Experiment ex = parse_experiment(R"([geometry]
 kind = "slab"
@@ -280,56 +350,36 @@ theta_i_deg = [30]
 samples = 1
 )", "lateral.toml");
   const SlabGeometry& g = ex.slab;
-  const auto lateral_medium = [&](int block) {
+  const auto lateral_medium = [&](int block, int reach) {
     auto grids = std::make_unique<volume::DensityGrids>(g);
     const int n = g.grid.lateral_voxels;
     for (auto it = grids->grids()[0]->beginValueOn(); it; ++it) {
       const openvdb::Coord c = it.getCoord();
       it.setValue(*it * static_cast<float>(1 + 0.5 * std::cos(2 * kPi * c.x() / n) * std::cos(2 * kPi * c.y() / n)));
     }
-    return std::make_unique<volume::SlabMedium>(g, std::move(grids), block);
+    return std::make_unique<volume::SlabMedium>(g, std::move(grids), block, reach);
   };
-  struct Moments {
-    double n = 0, sum[3] = {0, 0, 0}, sq[3] = {0, 0, 0};
-    void add(int i, double v) { sum[i] += v, sq[i] += v * v; }
-    double mean(int i) const { return sum[i] / n; }
-    double var_mean(int i) const { return (sq[i] / n - mean(i) * mean(i)) / (n - 1); }
+  const auto automatic = lateral_medium(1, 0);
+  ASSERT_EQ(automatic->majorants()[0].lateral, 16);
+  EXPECT_EQ(automatic->majorants()[0].reach, 5);  // 16 cells per unit tile, mean free path about 1 / 3.3
+  expect_boxes_agree_with_one_cell(lateral_medium, g, spherical_direction(60 * kPi / 180, 0.3), 1 << 17, 6, {1, 0, 15});
+}
+
+// The same on the random three-layer stack of the tests above (laterally varying
+// density in layers 0 and 2, varying S in layer 0, a linear depth profile
+// between them; 5 x 5 voxel columns on a tile of 2, albedo 1, theta_i = 40 deg):
+// flights against boxes of reach 1, the automatic one and 4 (the whole tile)
+// agree with flights against one cell per layer and depth run, through the
+// layers' faces both ways (2^16 paths each, seeds 21-23 and 20; 9 comparisons,
+// by chance all pass with probability > 1 - 7e-5).
+TEST(SlabMajorants, BoxFlightsAgreeWithOneCellOnARandomStack) {
+  const Experiment ex = parse_experiment(kGeometry, "m.toml");
+  const SlabGeometry& g = ex.slab;
+  const auto medium = [&](int block, int reach) {
+    Rng rng(2024);
+    return std::make_unique<volume::SlabMedium>(g, random_grids(g, rng), block, reach);
   };
-  const auto run = [&](const volume::SlabMedium& medium, std::uint64_t seed) {
-    auto flight = volume::make_flight(medium);
-    Rng rng(seed);
-    Moments s;
-    const Vec3 wi = spherical_direction(60 * kPi / 180, 0.3);
-    for (int path = 0; path < (1 << 17); ++path, ++s.n) {
-      volume::Photon p;
-      p.d = -wi;
-      p.x = rng.uniform();
-      p.y = rng.uniform();
-      int events = 0;
-      double first_depth = medium.bottom();
-      for (;;) {
-        const volume::Flight f = flight->fly(p, rng);
-        if (f != volume::Flight::kCollision) {
-          s.add(0, f == volume::Flight::kExitTop ? 1.0 : 0.0);
-          break;
-        }
-        if (events++ == 0) first_depth = p.depth;
-        const volume::ScatterSample sc = flight->scatter(medium.layers()[p.layer], p.layer, -p.d, rng);
-        EXPECT_TRUE(sc.valid);
-        p.d = sc.wo;
-      }
-      s.add(1, events);
-      s.add(2, first_depth);
-    }
-    return s;
-  };
-  const auto fine = lateral_medium(1), coarse = lateral_medium(g.grid.lateral_voxels);
-  ASSERT_EQ(fine->majorants()[0].lateral, 16);
-  ASSERT_EQ(coarse->majorants()[0].lateral, 1);
-  const Moments a = run(*fine, 5), b = run(*coarse, 6);
-  const char* names[3] = {"reflectance", "events per path", "first event depth"};
-  for (int i = 0; i < 3; ++i) {
-    const double z = (a.mean(i) - b.mean(i)) / std::sqrt(a.var_mean(i) + b.var_mean(i));
-    EXPECT_LT(std::fabs(z), 4.5) << names[i] << ": voxel-column cells " << a.mean(i) << ", one cell " << b.mean(i);
-  }
+  ASSERT_EQ(medium(1, 0)->majorants()[0].lateral, 5);
+  ASSERT_EQ(medium(1, 0)->majorants()[2].lateral, 5);
+  expect_boxes_agree_with_one_cell(medium, g, spherical_direction(40 * kPi / 180, 1.1), 1 << 16, 20, {1, 0, 4});
 }
