@@ -6,8 +6,9 @@
 // density of the dense copy the flights read (VoxelDensity). The voxels
 // are random, the stored periodic seam column included, and so is S in one
 // layer. Also: the dense copy agrees with OpenVDB's sampler; bit-identical
-// tables for 1 and 2 threads on the grid path; lateral flights (boxes of cells
-// ahead of the photon) that agree with flights against one cell per layer.
+// tables for 1 and 2 threads on the grid path, and walk sums on the lateral
+// path; lateral flights (boxes of cells ahead of the photon) that agree with
+// flights against one cell per layer.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,13 +16,18 @@
 #include <sstream>
 #include <string>
 
+#include <tbb/global_control.h>
+
 #include "models/core/rng.h"
 #include "models/core/warp.h"
 #include "sim/experiment/experiment.h"
+#include "sim/parallel/run_chunks.h"
 #include "sim/slab/density_grid.h"
 #include "sim/slab/free_flight.h"
 #include "sim/slab/medium.h"
 #include "sim/slab/voxel_density.h"
+#include "sim/slab/walk.h"
+#include "sim/tally/brdf_tally.h"
 #include "tests/sim/slab/test_slab_helpers.h"
 
 using namespace mcref;
@@ -163,6 +169,35 @@ void expect_boxes_agree_with_one_cell(const std::function<std::unique_ptr<volume
       if (M.lateral > 1) what += " " + std::to_string(M.reach);
     expect_same_moments(flight_moments(*fine, wi, paths, ++seed), b, what);
   }
+}
+
+// A laterally varying layer: density times 1 + 0.5 cos(2 pi x) cos(2 pi y) on a
+// unit tile of 16 x 16 voxel columns (SGGX surface-like, alpha 0.5), with
+// majorant cells of `block` columns and boxes of `reach` (0: automatic).
+const char* kLateral = R"([geometry]
+kind = "slab"
+backend = "openvdb"
+lateral_voxels = 16
+depth_voxels = 4
+[[geometry.layer]]
+phase = "sggx_surface"
+alpha = 0.5
+thickness = 1.0
+density = 3.0
+[[measure]]
+quantity = "brdf"
+theta_i_deg = [30]
+samples = 1
+)";
+
+std::unique_ptr<volume::SlabMedium> cosine_lateral_medium(const SlabGeometry& g, int block, int reach) {
+  auto grids = std::make_unique<volume::DensityGrids>(g);
+  const int n = g.grid.lateral_voxels;
+  for (auto it = grids->grids()[0]->beginValueOn(); it; ++it) {
+    const openvdb::Coord c = it.getCoord();
+    it.setValue(*it * static_cast<float>(1 + 0.5 * std::cos(2 * kPi * c.x() / n) * std::cos(2 * kPi * c.y() / n)));
+  }
+  return std::make_unique<volume::SlabMedium>(g, std::move(grids), block, reach);
 }
 
 }  // namespace
@@ -334,35 +369,41 @@ samples = 20000
 // (2^17 paths each, seeds 7, 8, 9 for the boxes and 6 for one cell; the
 // family of 9 fails by chance with probability < 7e-5).
 TEST(SlabMajorants, LateralFlightsDoNotDependOnTheCellSize) {
-  const Experiment ex = parse_experiment(R"([geometry]
-kind = "slab"
-backend = "openvdb"
-lateral_voxels = 16
-depth_voxels = 4
-[[geometry.layer]]
-phase = "sggx_surface"
-alpha = 0.5
-thickness = 1.0
-density = 3.0
-[[measure]]
-quantity = "brdf"
-theta_i_deg = [30]
-samples = 1
-)", "lateral.toml");
+  const Experiment ex = parse_experiment(kLateral, "lateral.toml");
   const SlabGeometry& g = ex.slab;
-  const auto lateral_medium = [&](int block, int reach) {
-    auto grids = std::make_unique<volume::DensityGrids>(g);
-    const int n = g.grid.lateral_voxels;
-    for (auto it = grids->grids()[0]->beginValueOn(); it; ++it) {
-      const openvdb::Coord c = it.getCoord();
-      it.setValue(*it * static_cast<float>(1 + 0.5 * std::cos(2 * kPi * c.x() / n) * std::cos(2 * kPi * c.y() / n)));
-    }
-    return std::make_unique<volume::SlabMedium>(g, std::move(grids), block, reach);
-  };
+  const auto lateral_medium = [&](int block, int reach) { return cosine_lateral_medium(g, block, reach); };
   const auto automatic = lateral_medium(1, 0);
   ASSERT_EQ(automatic->majorants()[0].lateral, 16);
   EXPECT_EQ(automatic->majorants()[0].reach, 5);  // 16 cells per unit tile, mean free path about 1 / 3.3
   expect_boxes_agree_with_one_cell(lateral_medium, g, spherical_direction(60 * kPi / 180, 0.3), 1 << 17, 6, {1, 0, 15});
+}
+
+// Results do not depend on the thread count on the lateral path either (no
+// TOML reaches it, so GridPathBitIdenticalForOneAndTwoThreads cannot): the
+// walk's binned sums over 2^14 paths through the laterally varying medium
+// above (theta_i = 50 deg, seed 11), in run_chunks' 4 chunks as simulate_slab
+// runs them, are bit-identical on 1 and 2 threads.
+TEST(SlabMajorants, LateralPathBitIdenticalForOneAndTwoThreads) {
+  const Experiment ex = parse_experiment(kLateral, "lateral.toml");
+  const auto medium = cosine_lateral_medium(ex.slab, 1, 0);
+  ASSERT_EQ(medium->majorants()[0].lateral, 16);
+  BrdfLayout layout;
+  layout.transmission = true;
+  layout.order1_classes = {"volume", "substrate"};
+  const Vec3 wi = spherical_direction(50 * kPi / 180, 0);
+  const auto sums = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+    return run_chunks(1 << 14, layout.sums_size(), 11, [&](Rng& rng, std::uint64_t count, Sums& s) {
+      BrdfAccumulator acc(layout, 0.0, s);
+      auto flight = volume::make_flight(*medium);
+      for (std::uint64_t n = 0; n < count; ++n) volume::walk(*medium, *flight, volume::WalkSettings{}, wi, rng, acc);
+    });
+  };
+  const Sums one = sums(1), two = sums(2);
+  double energy = 0;
+  for (double v : one) energy += v;
+  ASSERT_GT(energy, 0);  // not zero against zero
+  EXPECT_EQ(one, two);
 }
 
 // The same on the random three-layer stack of the tests above (laterally varying
