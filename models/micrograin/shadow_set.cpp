@@ -28,11 +28,10 @@ double ShadowSet::ellipse_radius(double x) const {
   return (-u * h * c + std::sqrt(w * rs * rs + h * h * c * c)) / w;
 }
 
+bool ShadowSet::in_arc(double psi) const { return has_arc() && std::fabs(std::remainder(psi - phi, 2 * kPi)) < psik; }
+
 double ShadowSet::radius(double psi) const {
-  if (!has_arc()) return rs;
-  const double x = std::remainder(psi - phi, 2 * kPi);
-  if (std::fabs(x) >= psik) return rs;
-  return std::max(rs, ellipse_radius(x));
+  return in_arc(psi) ? std::max(rs, ellipse_radius(std::remainder(psi - phi, 2 * kPi))) : rs;
 }
 
 double ShadowSet::param(double psi) const {

@@ -26,6 +26,8 @@ struct ShadowSet {
 
   ShadowSet(Vec3 d_unit, double h);
   bool has_arc() const { return tk >= 0; }
+  // Is azimuth psi strictly within the arc?
+  bool in_arc(double psi) const;
   // Radius of K_d(h) at azimuth psi: E's where psi is within the arc, else rs.
   double radius(double psi) const;
   // Radius of E at azimuth x relative to phi (|x| <= pi/2 within the arc).

@@ -117,12 +117,9 @@ double cap_shadow_union_area(Vec3 i_unit, Vec3 o_unit, double h) {
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
     const double a = cuts[k], b = cuts[k + 1], m = 0.5 * (a + b);
     if (b - a <= 0) continue;
-    const bool in_i = std::fabs(std::remainder(m - ki.phi, 2 * kPi)) < ki.psik;
-    const bool in_o = std::fabs(std::remainder(m - ko.phi, 2 * kPi)) < ko.psik;
+    const bool in_i = ki.in_arc(m), in_o = ko.in_arc(m);
     if (!in_i && !in_o) continue;
-    const bool use_i = in_i && (!in_o || ki.ellipse_radius(std::remainder(m - ki.phi, 2 * kPi)) >=
-                                             ko.ellipse_radius(std::remainder(m - ko.phi, 2 * kPi)));
-    const ShadowSet& k_top = use_i ? ki : ko;
+    const ShadowSet& k_top = in_i && (!in_o || ki.radius(m) >= ko.radius(m)) ? ki : ko;
     sum += k_top.arc_excess(k_top.param(a), k_top.param(b), b - a);
   }
   return sum;
