@@ -249,3 +249,25 @@ TEST(MicrograinTwoWayMasking, BackscatterAndSymmetry) {
         }
     }
 }
+
+// Near backscatter the two ellipses nearly coincide and their crossings nearly
+// touch: relative azimuths eps = 1e-3 ... 1e-12 rad and polar angles equal or eps
+// apart relative to min(theta, 90 deg - theta), against the reference (same tolerance),
+// and max(|K_i|, |K_o|) <= |K_i U K_o| <= sum (excesses over the disc; same tolerance;
+// theta = 30 deg with h = 0.5 = sin theta is the edge where an arc vanishes).
+TEST(MicrograinTwoWayMasking, NearBackscatter) {
+  for (double ti : {30.0, 80.0, 89.99})
+    for (double h : {0.1, 0.5, 0.9})
+      for (int k = 3; k <= 12; ++k)
+        for (double dt : {0.0, 1.0, -1.0}) {
+          const double eps = std::pow(10.0, -k);
+          const double to = ti + dt * eps * std::min(ti, 90 - ti);
+          const Vec3 i = spherical_direction(deg(ti), 1.0), o = spherical_direction(deg(to), 1.0 + eps);
+          const double area = cap_shadow_union_area(i, o, h), ref = test::union_area_adaptive(i, o, h, 1e-13, kGrid);
+          EXPECT_TRUE(near_reference(area, ref)) << ti << " " << h << " " << k << " " << dt;
+          const double a_i = ShadowSet(i, h).excess(), a_o = ShadowSet(o, h).excess();
+          const double lo = std::max(a_i, a_o), hi = a_i + a_o;
+          EXPECT_GE(area, lo - 1e-9 * lo - 1e-11) << ti << " " << h << " " << k << " " << dt;
+          EXPECT_LE(area, hi + 1e-9 * hi + 1e-11) << ti << " " << h << " " << k << " " << dt;
+        }
+}
