@@ -14,6 +14,8 @@
 //   1/2 ∫ (x y' - y x') dt = 1/2 [(t2 - t1) / cos theta - h tan theta (sin t2 - sin t1)].
 //
 // Directions: unit-space, z > 0; h in [0, 1].
+#include <algorithm>
+
 #include "models/core/vec.h"
 
 namespace mcref::micrograin {
@@ -37,8 +39,9 @@ struct ShadowSet {
   // Area of E's sector from t1 to t2 minus the disc's sector over the same
   // azimuth range dpsi: the excess of K_d(h) over the disc there.
   double arc_excess(double t1, double t2, double dpsi) const;
-  // The whole excess |K_d(h)| - pi (1 - h^2) (cap_shadow_area of projected_area.h).
-  double excess() const { return has_arc() ? arc_excess(-tk, tk, 2 * psik) : 0.0; }
+  // The whole excess |K_d(h)| - pi (1 - h^2) (cap_shadow_area of projected_area.h),
+  // kept >= 0 where the arc vanishes (h -> sin theta) and rounding could make it negative.
+  double excess() const { return has_arc() ? std::max(0.0, arc_excess(-tk, tk, 2 * psik)) : 0.0; }
 };
 
 // Radius of K_d(h) at azimuth psi (unit space, unit-space direction d).

@@ -122,7 +122,7 @@ double cap_shadow_union_area(Vec3 i_unit, Vec3 o_unit, double h) {
     const ShadowSet& k_top = in_i && (!in_o || ki.radius(m) >= ko.radius(m)) ? ki : ko;
     sum += k_top.arc_excess(k_top.param(a), k_top.param(b), b - a);
   }
-  return sum;
+  return std::max(0.0, sum);  // rounding where both arcs vanish
 }
 
 double distant_masking_union(const GrainField& f, Vec3 i, Vec3 o, double h) {
