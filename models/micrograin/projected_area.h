@@ -25,7 +25,8 @@ double cap_cross_section(double h);
 //   sigma_t = |e_x q_y|                                                 (two triangles)
 //   sigma_c = (pi - phi_q) sin^2 theta_m                                 (disc sector)
 //   sigma_s = max(sigma_e - sigma_t - sigma_c, 0), and 0 if h >= sin theta_i,
-// evaluated with atan2 instead of acos: the acos form lost up to 8e-9 (absolute)
+// i.e. sigma_e = t_k / cos theta_i, sigma_t = h tan theta_i sin t_k and sigma_c =
+// psi_k (1 - h^2) in shadow_set.h's terms, evaluated with atan2 instead of acos: the acos form lost up to 8e-9 (absolute)
 // where h -> sin theta_i (2 % at theta_i = 89.99 deg, 1 - h / sin theta_i = 1e-7).
 double cap_shadow_area(double theta_i, double h);
 // Same from a unit-space direction i_unit (i_unit.z > 0), more accurate near grazing.
