@@ -4,37 +4,16 @@
 #include <cmath>
 
 #include "models/core/quadrature.h"
+#include "models/micrograin/shadow_set.h"
 
 namespace mcref::micrograin {
 
 double cap_cross_section(double h) { return kPi * (1 - h * h); }
 
-namespace {
-// Shadow term from sin and cos of the unit-space incidence angle (no
-// round trip through theta, which would cost relative accuracy near grazing).
-double shadow_area(double sin_i, double cos_i, double h) {
-  if (h >= sin_i) return 0.0;  // the silhouette lies below the cut plane
-  const double tan_i = sin_i / cos_i;
-  const double sin_m = std::sqrt(1 - h * h);  // radius of the cross-section disc
-  // cos phi_q = -1/(tan theta_i tan theta_m), tan theta_m = sin_m / h.
-  const double cos_q = std::max(-1.0, -h / (tan_i * sin_m));
-  const double phi_q = std::acos(cos_q);
-  const double q_x = sin_m * cos_q, q_y = sin_m * std::sqrt(std::max(0.0, 1 - cos_q * cos_q));
-  const double e_x = h * tan_i;  // centre of the projected silhouette ellipse
-  const double sigma_e = std::acos(std::clamp(-(q_x - e_x) * cos_i, 0.0, 1.0)) / cos_i;
-  const double sigma_t = std::fabs(e_x * q_y);
-  const double sigma_c = (kPi - phi_q) * sin_m * sin_m;
-  return std::max(sigma_e - sigma_t - sigma_c, 0.0);
-}
-}  // namespace
+// The excess of the shadow set K_i(h) over the disc (shadow_set.h).
+double cap_shadow_area(double theta_i, double h) { return ShadowSet(spherical_direction(theta_i, 0), h).excess(); }
 
-double cap_shadow_area(double theta_i, double h) {
-  return shadow_area(std::sin(theta_i), std::cos(theta_i), h);
-}
-
-double cap_shadow_area(Vec3 i_unit, double h) {
-  return shadow_area(std::hypot(i_unit.x, i_unit.y), i_unit.z, h);
-}
+double cap_shadow_area(Vec3 i_unit, double h) { return ShadowSet(i_unit, h).excess(); }
 
 double projected_cap_area(double theta_i, double h) {
   return cap_cross_section(h) + cap_shadow_area(theta_i, h);  // vNDF Eq. 5

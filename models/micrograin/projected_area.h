@@ -15,14 +15,19 @@ namespace mcref::micrograin {
 // sigma(n, h) = pi (1 - h^2): the cap's cross-section at height h.
 double cap_cross_section(double h);
 
-// Shadow term sigma_s(i, h), closed form of the first author's renderer
-// (LilTracer, src/lt/brdf/micrograin.cpp, as restated in papers/README.md):
-// with sin theta_m = sqrt(1 - h^2), cos phi_q = -1/(tan theta_i tan theta_m),
-// q = sin theta_m (cos phi_q, sin phi_q), e_x = h tan theta_i:
+// Shadow term sigma_s(i, h): the excess of the shadow set K_i(h) over the disc,
+// the sector of the ellipse arc beyond it minus the disc's (shadow_set.h). It is the
+// closed form of the first author's renderer (LilTracer, src/lt/brdf/micrograin.cpp,
+// as restated in papers/README.md), with sin theta_m = sqrt(1 - h^2),
+// cos phi_q = -1/(tan theta_i tan theta_m), q = sin theta_m (cos phi_q, sin phi_q),
+// e_x = h tan theta_i:
 //   sigma_e = acos(clamp(-(q_x - e_x) cos theta_i, 0, 1)) / cos theta_i  (ellipse sector)
 //   sigma_t = |e_x q_y|                                                 (two triangles)
 //   sigma_c = (pi - phi_q) sin^2 theta_m                                 (disc sector)
-//   sigma_s = max(sigma_e - sigma_t - sigma_c, 0), and 0 if h >= sin theta_i.
+//   sigma_s = max(sigma_e - sigma_t - sigma_c, 0), and 0 if h >= sin theta_i,
+// i.e. sigma_e = t_k / cos theta_i, sigma_t = h tan theta_i sin t_k and sigma_c =
+// psi_k (1 - h^2) in shadow_set.h's terms, evaluated with atan2 instead of acos: the acos form lost up to 8e-9 (absolute)
+// where h -> sin theta_i (2 % at theta_i = 89.99 deg, 1 - h / sin theta_i = 1e-7).
 double cap_shadow_area(double theta_i, double h);
 // Same from a unit-space direction i_unit (i_unit.z > 0), more accurate near grazing.
 double cap_shadow_area(Vec3 i_unit, double h);
