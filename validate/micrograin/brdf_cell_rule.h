@@ -1,0 +1,161 @@
+#pragma once
+// The cell rule of the micrograin_brdf family (issue #15, part 4): ∫∫ g dtheta dphi
+// over a (theta_o, phi) cell, g = f cos theta_o sin theta_o (smooth at the pole,
+// unlike f cos theta_o in mu = cos theta_o), to kCellRelTolerance per component.
+// - The cell is split where g has kinks: at theta_o = theta_i (the union masking's
+//   cusp at backscatter, the specular peak at the mirror direction, and the G_dist
+//   polar cuts' swap), and at phi = 0, pi (relative to phi_i) when they fall inside.
+// - Pieces ending at the kink theta_i are graded toward it: x = a + (b - a) u^2
+//   turns (x - a)^(k/2) into a polynomial in u. In phi, only pieces touching
+//   theta_i are graded (the cusp and the peak sit at theta_o = theta_i).
+// - Each piece: 4 x 4 Gauss-Legendre in (u, v), checked against 3 x 3 (a-posteriori:
+//   |Q4 - Q3| bounds Q4's error, which is far smaller). Where the check fails, a
+//   piece at the grazing edge is halved in theta only (there g ~ (pi/2 - theta)^p
+//   with p not an integer, smooth in phi; grading does not help, and puts nodes
+//   where G_dist's geometry is dearest), any other piece is quadrisected; the parts
+//   share the piece's tolerance.
+// The nodes depend only on the cell and theta_i until a check fails, so models of
+// one table share them (geometry_memo.h).
+// Status (issue #15, part 4): accurate, but the grazing cells need hundreds of
+// nodes of the union geometry (5-90 ms each near grazing): far above the cost
+// of the former 3 x 3 rule; see validate/FINDINGS.md.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "models/core/vec.h"
+
+namespace mcref {
+
+// [lo, hi] mapped from u in [0, 1]: linear, or graded toward one end.
+struct GradedInterval {
+  double lo, hi;
+  int graded = 0;  // -1: toward lo, +1: toward hi, 0: linear
+  double x(double u) const {
+    if (graded < 0) return lo + (hi - lo) * u * u;
+    if (graded > 0) return hi - (hi - lo) * (1 - u) * (1 - u);
+    return lo + (hi - lo) * u;
+  }
+  double dx(double u) const {
+    if (graded < 0) return 2 * (hi - lo) * u;
+    if (graded > 0) return 2 * (hi - lo) * (1 - u);
+    return hi - lo;
+  }
+};
+
+// [lo, hi] in `parts` equal pieces, split at the kinks inside it; pieces ending at
+// a kink graded toward it (both ends: halved, each half toward its end).
+std::vector<GradedInterval> graded_pieces(double lo, double hi, const std::vector<double>& kinks, int parts = 1);
+
+// Relative tolerance the cell rule aims at (half of kCellRelTolerance: the rest
+// is margin for the error estimate), and its absolute floor (cells at zero).
+struct CellRuleTolerance {
+  double rel;
+  double abs;  // on ∫∫ g, i.e. sr^-1 times the cell's ∫∫ cos sin dtheta dphi
+  int max_depth = 8;
+};
+
+namespace detail {
+
+struct Rules {
+  double x4[4], w4[4], x3[3], w3[3];  // on [0, 1]
+  Rules();
+};
+const Rules& rules();
+
+template <int N, class G>
+void product_rules(const G& g, const GradedInterval& t, const GradedInterval& p, double u0, double u1, double v0,
+                   double v1, std::array<double, N>& q4, std::array<double, N>& q3) {
+  const Rules& r = rules();
+  q4.fill(0);
+  q3.fill(0);
+  double val[N];
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) {
+      const double u = u0 + (u1 - u0) * r.x4[a], v = v0 + (v1 - v0) * r.x4[b];
+      const double w = r.w4[a] * r.w4[b] * t.dx(u) * p.dx(v);
+      g(t.x(u), p.x(v), val);
+      for (int k = 0; k < N; ++k) q4[k] += w * val[k];
+    }
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) {
+      const double u = u0 + (u1 - u0) * r.x3[a], v = v0 + (v1 - v0) * r.x3[b];
+      const double w = r.w3[a] * r.w3[b] * t.dx(u) * p.dx(v);
+      g(t.x(u), p.x(v), val);
+      for (int k = 0; k < N; ++k) q3[k] += w * val[k];
+    }
+  const double area = (u1 - u0) * (v1 - v0);
+  for (int k = 0; k < N; ++k) {
+    q4[k] *= area;
+    q3[k] *= area;
+  }
+}
+
+template <int N, class G>
+void refine(const G& g, const GradedInterval& t, const GradedInterval& p, double u0, double u1, double v0, double v1,
+            const std::array<double, N>& q4, const std::array<double, N>& q3, const std::array<double, N>& tol,
+            int depth, std::array<double, N>& sum) {
+  bool ok = true;
+  for (int k = 0; k < N; ++k) ok = ok && std::fabs(q4[k] - q3[k]) <= tol[k];
+  if (ok || depth <= 0) {
+    for (int k = 0; k < N; ++k) sum[k] += q4[k];
+    return;
+  }
+  std::array<double, N> half;
+  for (int k = 0; k < N; ++k) half[k] = 0.5 * tol[k];
+  const double um = 0.5 * (u0 + u1), vm = 0.5 * (v0 + v1);
+  // A piece at the grazing edge is halved in theta only (g ~ (pi/2 - theta)^p
+  // there, p not an integer; smooth in phi); others are quadrisected. Each
+  // part gets half of the tolerance.
+  if (u1 == 1 && t.graded == 0 && std::fabs(t.hi - kPi / 2) < 1e-12) {
+    const double box[2][4] = {{u0, um, v0, v1}, {um, u1, v0, v1}};
+    for (const auto& c : box) {
+      std::array<double, N> c4, c3;
+      product_rules<N>(g, t, p, c[0], c[1], c[2], c[3], c4, c3);
+      refine<N>(g, t, p, c[0], c[1], c[2], c[3], c4, c3, half, depth - 1, sum);
+    }
+    return;
+  }
+  for (int k = 0; k < N; ++k) half[k] *= 0.5;
+  const double box[4][4] = {{u0, um, v0, vm}, {um, u1, v0, vm}, {u0, um, vm, v1}, {um, u1, vm, v1}};
+  for (const auto& c : box) {
+    std::array<double, N> c4, c3;
+    product_rules<N>(g, t, p, c[0], c[1], c[2], c[3], c4, c3);
+    refine<N>(g, t, p, c[0], c[1], c[2], c[3], c4, c3, half, depth - 1, sum);
+  }
+}
+
+}  // namespace detail
+
+// ∫∫ g(theta, phi, out) dtheta dphi over [t0, t1] x [p0, p1] (phi relative to phi_i),
+// N components, each to tol.rel of its value or tol.abs; theta_parts x phi_parts
+// equal pieces to start with (a hemisphere: a few; a table's cell: 1 x 1).
+template <int N, class G>
+std::array<double, N> cell_rule(const G& g, double theta_i, double t0, double t1, double p0, double p1,
+                                const CellRuleTolerance& tol, int theta_parts = 1, int phi_parts = 1) {
+  const std::vector<GradedInterval> ts = graded_pieces(t0, t1, {theta_i}, theta_parts);
+  struct Piece {
+    GradedInterval t, p;
+    std::array<double, N> q4, q3;
+  };
+  std::vector<Piece> pieces;
+  std::array<double, N> scale{};
+  for (const GradedInterval& t : ts) {
+    const bool at_kink = std::fabs(t.lo - theta_i) < 1e-12 || std::fabs(t.hi - theta_i) < 1e-12;
+    const std::vector<double> phi_kinks =
+        at_kink ? std::vector<double>{-kPi, 0.0, kPi, 2 * kPi} : std::vector<double>{};
+    for (const GradedInterval& p : graded_pieces(p0, p1, phi_kinks, phi_parts)) {
+      Piece pc{t, p, {}, {}};
+      detail::product_rules<N>(g, t, p, 0, 1, 0, 1, pc.q4, pc.q3);
+      for (int k = 0; k < N; ++k) scale[k] += std::fabs(pc.q4[k]);
+      pieces.push_back(pc);
+    }
+  }
+  std::array<double, N> per_piece, sum{};
+  for (int k = 0; k < N; ++k) per_piece[k] = std::fmax(tol.rel * scale[k], tol.abs) / pieces.size();
+  for (const Piece& pc : pieces) detail::refine<N>(g, pc.t, pc.p, 0, 1, 0, 1, pc.q4, pc.q3, per_piece, tol.max_depth, sum);
+  return sum;
+}
+
+}  // namespace mcref
