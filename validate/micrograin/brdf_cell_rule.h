@@ -9,16 +9,16 @@
 //   turns (x - a)^(k/2) into a polynomial in u. In phi, only pieces touching
 //   theta_i are graded (the cusp and the peak sit at theta_o = theta_i).
 // - Each piece: 4 x 4 Gauss-Legendre in (u, v), checked against 3 x 3 (a-posteriori:
-//   |Q4 - Q3| bounds Q4's error, which is far smaller). Where the check fails, a
-//   piece at the grazing edge is halved in theta only (there g ~ (pi/2 - theta)^p
-//   with p not an integer, smooth in phi; grading does not help, and puts nodes
-//   where G_dist's geometry is dearest), any other piece is quadrisected; the parts
-//   share the piece's tolerance.
+//   |Q4 - Q3| bounds Q4's error, which is far smaller). While the summed estimates
+//   exceed the cell's tolerance, the worst piece is split (global adaptivity): at
+//   the grazing edge in theta only, 0.15 of it at the edge (a geometric mesh; there
+//   g ~ (pi/2 - theta)^p, p not an integer, smooth in phi), elsewhere in four.
 // The nodes depend only on the cell and theta_i until a check fails, so models of
 // one table share them (geometry_memo.h).
-// Status (issue #15, part 4): accurate, but the grazing cells need hundreds of
-// nodes of the union geometry (5-90 ms each near grazing): far above the cost
-// of the former 3 x 3 rule; see validate/FINDINGS.md.
+// Status (issue #15, part 4; branch `cells`): the accuracy is not yet verified
+// against the references, and the grazing cells need far more nodes than the
+// former 3 x 3 rule, each dearer (the union geometry near grazing): see
+// validate/FINDINGS.md.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -53,7 +53,7 @@ std::vector<GradedInterval> graded_pieces(double lo, double hi, const std::vecto
 struct CellRuleTolerance {
   double rel;
   double abs;  // on ∫∫ g, i.e. sr^-1 times the cell's ∫∫ cos sin dtheta dphi
-  int max_depth = 8;
+  int max_splits = 200;
 };
 
 namespace detail {
@@ -92,38 +92,55 @@ void product_rules(const G& g, const GradedInterval& t, const GradedInterval& p,
   }
 }
 
+template <int N>
+struct Piece {
+  GradedInterval t, p;
+  double u0, u1, v0, v1;
+  std::array<double, N> q4, q3;
+};
+
+// Global adaptivity: while the summed estimates |Q4 - Q3| exceed tol in some
+// component, the piece with the largest estimate (relative to tol) is split: at
+// the grazing edge in theta only, 0.15 of it at the edge (a geometric mesh: there
+// g ~ (pi/2 - theta)^p with p not an integer, smooth in phi), elsewhere in four.
 template <int N, class G>
-void refine(const G& g, const GradedInterval& t, const GradedInterval& p, double u0, double u1, double v0, double v1,
-            const std::array<double, N>& q4, const std::array<double, N>& q3, const std::array<double, N>& tol,
-            int depth, std::array<double, N>& sum) {
-  bool ok = true;
-  for (int k = 0; k < N; ++k) ok = ok && std::fabs(q4[k] - q3[k]) <= tol[k];
-  if (ok || depth <= 0) {
-    for (int k = 0; k < N; ++k) sum[k] += q4[k];
-    return;
-  }
-  std::array<double, N> half;
-  for (int k = 0; k < N; ++k) half[k] = 0.5 * tol[k];
-  const double um = 0.5 * (u0 + u1), vm = 0.5 * (v0 + v1);
-  // A piece at the grazing edge is halved in theta only (g ~ (pi/2 - theta)^p
-  // there, p not an integer; smooth in phi); others are quadrisected. Each
-  // part gets half of the tolerance.
-  if (u1 == 1 && t.graded == 0 && std::fabs(t.hi - kPi / 2) < 1e-12) {
-    const double box[2][4] = {{u0, um, v0, v1}, {um, u1, v0, v1}};
-    for (const auto& c : box) {
-      std::array<double, N> c4, c3;
-      product_rules<N>(g, t, p, c[0], c[1], c[2], c[3], c4, c3);
-      refine<N>(g, t, p, c[0], c[1], c[2], c[3], c4, c3, half, depth - 1, sum);
+std::array<double, N> refine(const G& g, std::vector<Piece<N>> pieces, const std::array<double, N>& tol,
+                             int max_splits) {
+  auto excess = [&](const Piece<N>& pc) {
+    double e = 0;
+    for (int k = 0; k < N; ++k) e = std::fmax(e, std::fabs(pc.q4[k] - pc.q3[k]) / tol[k]);
+    return e;
+  };
+  for (int split = 0; split < max_splits; ++split) {
+    std::array<double, N> err{};
+    for (const Piece<N>& pc : pieces)
+      for (int k = 0; k < N; ++k) err[k] += std::fabs(pc.q4[k] - pc.q3[k]);
+    bool ok = true;
+    for (int k = 0; k < N; ++k) ok = ok && err[k] <= tol[k];
+    if (ok) break;
+    std::size_t worst = 0;
+    for (std::size_t j = 1; j < pieces.size(); ++j)
+      if (excess(pieces[j]) > excess(pieces[worst])) worst = j;
+    const Piece<N> pc = pieces[worst];
+    pieces.erase(pieces.begin() + static_cast<std::ptrdiff_t>(worst));
+    const double um = 0.5 * (pc.u0 + pc.u1), vm = 0.5 * (pc.v0 + pc.v1);
+    std::vector<std::array<double, 4>> boxes;
+    if (pc.u1 == 1 && pc.t.graded == 0 && std::fabs(pc.t.hi - kPi / 2) < 1e-12) {
+      const double ue = pc.u1 - 0.15 * (pc.u1 - pc.u0);
+      boxes = {{pc.u0, ue, pc.v0, pc.v1}, {ue, pc.u1, pc.v0, pc.v1}};
+    } else {
+      boxes = {{pc.u0, um, pc.v0, vm}, {um, pc.u1, pc.v0, vm}, {pc.u0, um, vm, pc.v1}, {um, pc.u1, vm, pc.v1}};
     }
-    return;
+    for (const auto& c : boxes) {
+      Piece<N> child{pc.t, pc.p, c[0], c[1], c[2], c[3], {}, {}};
+      product_rules<N>(g, pc.t, pc.p, c[0], c[1], c[2], c[3], child.q4, child.q3);
+      pieces.push_back(child);
+    }
   }
-  for (int k = 0; k < N; ++k) half[k] *= 0.5;
-  const double box[4][4] = {{u0, um, v0, vm}, {um, u1, v0, vm}, {u0, um, vm, v1}, {um, u1, vm, v1}};
-  for (const auto& c : box) {
-    std::array<double, N> c4, c3;
-    product_rules<N>(g, t, p, c[0], c[1], c[2], c[3], c4, c3);
-    refine<N>(g, t, p, c[0], c[1], c[2], c[3], c4, c3, half, depth - 1, sum);
-  }
+  std::array<double, N> sum{};
+  for (const Piece<N>& pc : pieces)
+    for (int k = 0; k < N; ++k) sum[k] += pc.q4[k];
+  return sum;
 }
 
 }  // namespace detail
@@ -135,27 +152,22 @@ template <int N, class G>
 std::array<double, N> cell_rule(const G& g, double theta_i, double t0, double t1, double p0, double p1,
                                 const CellRuleTolerance& tol, int theta_parts = 1, int phi_parts = 1) {
   const std::vector<GradedInterval> ts = graded_pieces(t0, t1, {theta_i}, theta_parts);
-  struct Piece {
-    GradedInterval t, p;
-    std::array<double, N> q4, q3;
-  };
-  std::vector<Piece> pieces;
+  std::vector<detail::Piece<N>> pieces;
   std::array<double, N> scale{};
   for (const GradedInterval& t : ts) {
     const bool at_kink = std::fabs(t.lo - theta_i) < 1e-12 || std::fabs(t.hi - theta_i) < 1e-12;
     const std::vector<double> phi_kinks =
         at_kink ? std::vector<double>{-kPi, 0.0, kPi, 2 * kPi} : std::vector<double>{};
     for (const GradedInterval& p : graded_pieces(p0, p1, phi_kinks, phi_parts)) {
-      Piece pc{t, p, {}, {}};
+      detail::Piece<N> pc{t, p, 0, 1, 0, 1, {}, {}};
       detail::product_rules<N>(g, t, p, 0, 1, 0, 1, pc.q4, pc.q3);
       for (int k = 0; k < N; ++k) scale[k] += std::fabs(pc.q4[k]);
       pieces.push_back(pc);
     }
   }
-  std::array<double, N> per_piece, sum{};
-  for (int k = 0; k < N; ++k) per_piece[k] = std::fmax(tol.rel * scale[k], tol.abs) / pieces.size();
-  for (const Piece& pc : pieces) detail::refine<N>(g, pc.t, pc.p, 0, 1, 0, 1, pc.q4, pc.q3, per_piece, tol.max_depth, sum);
-  return sum;
+  std::array<double, N> t;
+  for (int k = 0; k < N; ++k) t[k] = std::fmax(tol.rel * scale[k], tol.abs);
+  return detail::refine<N>(g, std::move(pieces), t, tol.max_splits);
 }
 
 }  // namespace mcref
