@@ -68,23 +68,19 @@ template <int N, class G>
 void product_rules(const G& g, const GradedInterval& t, const GradedInterval& p, double u0, double u1, double v0,
                    double v1, std::array<double, N>& q4, std::array<double, N>& q3) {
   const Rules& r = rules();
-  q4.fill(0);
-  q3.fill(0);
   double val[N];
-  for (int a = 0; a < 4; ++a)
-    for (int b = 0; b < 4; ++b) {
-      const double u = u0 + (u1 - u0) * r.x4[a], v = v0 + (v1 - v0) * r.x4[b];
-      const double w = r.w4[a] * r.w4[b] * t.dx(u) * p.dx(v);
-      g(t.x(u), p.x(v), val);
-      for (int k = 0; k < N; ++k) q4[k] += w * val[k];
-    }
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) {
-      const double u = u0 + (u1 - u0) * r.x3[a], v = v0 + (v1 - v0) * r.x3[b];
-      const double w = r.w3[a] * r.w3[b] * t.dx(u) * p.dx(v);
-      g(t.x(u), p.x(v), val);
-      for (int k = 0; k < N; ++k) q3[k] += w * val[k];
-    }
+  auto product = [&](const double* x, const double* w, int n, std::array<double, N>& q) {
+    q.fill(0);
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b) {
+        const double u = u0 + (u1 - u0) * x[a], v = v0 + (v1 - v0) * x[b];
+        const double wt = w[a] * w[b] * t.dx(u) * p.dx(v);
+        g(t.x(u), p.x(v), val);
+        for (int k = 0; k < N; ++k) q[k] += wt * val[k];
+      }
+  };
+  product(r.x4, r.w4, 4, q4);
+  product(r.x3, r.w3, 3, q3);
   const double area = (u1 - u0) * (v1 - v0);
   for (int k = 0; k < N; ++k) {
     q4[k] *= area;
