@@ -8,6 +8,7 @@
 #include "models/core/graded_quadrature.h"
 #include "models/core/quadrature.h"
 #include "models/microfacet/fresnel.h"
+#include "models/micrograin/clipped_cosines.h"
 #include "models/micrograin/ggx.h"
 #include "models/micrograin/height_masking.h"
 #include "models/micrograin/ndf.h"
@@ -128,17 +129,15 @@ double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior, T
   static const GaussLegendre rule(16);
   const bool fresnel = ior > 1;
   // Ring integrand at azimuth a: <i.m>+ <o.m>+ T |M m'|, with |M m'| <d.m> = A + B cos a + C sin a
-  // (M m' = (st beta_x cos a, st beta_y sin a, h)); split the ring where either sinusoid vanishes.
+  // (M m' = (st beta_x cos a, st beta_y sin a, h)): in closed form for isotropic grains
+  // without Fresnel, else split where either sinusoid vanishes and refined adaptively.
   auto ring_integral = [&](double h, double st) {
+    const Sinusoid p_i{h * i.z, st * f.beta_x * i.x, st * f.beta_y * i.y}, p_o{h * o.z, st * f.beta_x * o.x, st * f.beta_y * o.y};
+    // Isotropic grains without Fresnel: |M m'| is constant on the ring (clipped_cosines.h).
+    if (!fresnel && f.beta_x == f.beta_y) return clipped_product_integral(p_i, p_o) / std::hypot(st * f.beta_x, h);
     std::vector<double> cuts_a{0.0, 2 * kPi};
-    auto add_zeros = [&](Vec3 d) {
-      const double A = h * d.z, B = st * f.beta_x * d.x, C = st * f.beta_y * d.y, R = std::hypot(B, C);
-      if (R <= std::fabs(A)) return;  // the whole ring faces d, or none of it
-      const double a0 = std::atan2(C, B), w = std::acos(-A / R);
-      for (double z : {a0 - w, a0 + w}) cuts_a.push_back(std::fmod(std::fmod(z, 2 * kPi) + 2 * kPi, 2 * kPi));
-    };
-    add_zeros(i);
-    add_zeros(o);
+    add_sinusoid_zeros(p_i, cuts_a);
+    add_sinusoid_zeros(p_o, cuts_a);
     std::sort(cuts_a.begin(), cuts_a.end());
     auto integrand = [&](double a) {
       const double ca = std::cos(a), sa = std::sin(a);

@@ -85,7 +85,8 @@ bool has_specular_lobe(const MicroSurface& grain);
 // Its diffuse geometry factor (1/pi) tau0 / (|i.n||o.n|) ∫ D <i.m><o.m> T_i T_o G dm,
 // T = 1 - F_dielectric(ior) of the local angle (ior <= 1: T = 1, Lambertian).
 // rel_tol: the quadratures' relative tolerance (their error is far below it,
-// within 1e-6 at the default: tests/models/test_micrograin_gdist.cpp).
+// within 1e-6 at the default: tests/models/test_micrograin_gdist.cpp); the ring
+// integral is exact for isotropic grains without Fresnel (clipped_cosines.h).
 double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior, TwoWay masking = TwoWay::Product,
                               double rel_tol = 1e-8);
 
