@@ -2,113 +2,128 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
-#include "models/core/quadrature.h"
+#include "models/micrograin/shadow_set.h"
 #include "models/micrograin/unit_space.h"
 
 namespace mcref::micrograin {
 
 namespace {
 
-struct Dir {
-  double s, c, phi;  // sin, cos and azimuth of a unit-space direction
+// g(t) = a0 + a1 cos t + b1 sin t + a2 cos 2t + b2 sin 2t and g'(t).
+struct Trig2 {
+  double a0, a1, b1, a2, b2;
+  double value(double t, double& slope) const {
+    const double c = std::cos(t), s = std::sin(t), c2 = (c - s) * (c + s), s2 = 2 * s * c;
+    slope = -a1 * s + b1 * c - 2 * a2 * s2 + 2 * b2 * c2;
+    return a0 + a1 * c + b1 * s + a2 * c2 + b2 * s2;
+  }
 };
 
-Dir dir_of(Vec3 d) {
-  const double s = std::hypot(d.x, d.y), n = std::hypot(s, d.z);
-  return {s / n, d.z / n, std::atan2(d.y, d.x)};
+// Root of g in [a, b], where g(a) and g(b) differ in sign and g is monotone:
+// Newton steps kept inside the bracket, bisection otherwise.
+double refine_root(const Trig2& g, double a, double b, double ga) {
+  double t = 0.5 * (a + b);
+  for (int it = 0; it < 100 && b - a > 1e-15 * (1 + std::fabs(t)); ++it) {
+    double slope;
+    const double gt = g.value(t, slope);
+    if (gt == 0) return t;
+    if ((gt < 0) == (ga < 0)) {
+      a = t;
+      ga = gt;
+    } else {
+      b = t;
+    }
+    const double newton = t - gt / slope;
+    t = (slope != 0 && newton > a && newton < b) ? newton : 0.5 * (a + b);
+  }
+  return t;
 }
 
-double radius(const Dir& d, double h, double psi) {
-  const double rs = std::sqrt(std::max(0.0, 1 - h * h));
-  const double x = psi - d.phi, cx = std::cos(x), sx = std::sin(x);
-  const double u = d.s * cx;
-  if (u <= 0) return rs;
-  // 1 - u^2 = cos^2 theta cos^2 x + sin^2 x and disc = (1 - u^2)(1 - h^2) + h^2 cos^2 theta,
-  // written without the cancellation of 1 - u^2 near grazing (u -> 1).
-  const double w = d.c * d.c * cx * cx + sx * sx;
-  const double disc = w * rs * rs + h * h * d.c * d.c;
-  const double rc = (-u * h * d.c + std::sqrt(disc)) / w;
-  return rc * u > h * d.c ? std::max(rs, rc) : rs;
+// Parameters t in [t0, t1] where g changes sign. The interval is split until each
+// piece is certified by |g''| <= m2: free of roots (|g| beyond its possible change
+// about the midpoint) or monotone (|g'| beyond its), or g cannot exceed `floor`
+// there (the curves agree to rounding), or it is narrower than 1e-9: a root pair
+// missed there bounds an area of the order of its width cubed.
+void sign_changes(const Trig2& g, double t0, double t1, double floor, std::vector<double>& roots) {
+  const double m2 = std::hypot(g.a1, g.b1) + 4 * std::hypot(g.a2, g.b2);
+  struct Piece {
+    double a, b, ga, gb;
+  };
+  double slope;
+  std::vector<Piece> stack{{t0, t1, g.value(t0, slope), g.value(t1, slope)}};
+  while (!stack.empty()) {
+    const Piece p = stack.back();
+    stack.pop_back();
+    const double w = p.b - p.a, m = 0.5 * (p.a + p.b);
+    double gm_slope;
+    const double gm = g.value(m, gm_slope);
+    const double change = std::fabs(gm_slope) * w / 2 + m2 * w * w / 8;
+    const bool sign_change = (p.ga < 0) != (p.gb < 0);
+    if (std::fabs(gm) > change) continue;  // no root
+    if (std::fabs(gm_slope) > m2 * w / 2 || std::fabs(gm) + change <= floor || w <= 1e-9) {
+      if (sign_change) roots.push_back(refine_root(g, p.a, p.b, p.ga));
+      continue;
+    }
+    stack.push_back({p.a, m, p.ga, gm});
+    stack.push_back({m, p.b, gm, p.gb});
+  }
 }
 
-// Azimuths where d's radius leaves the disc: u sqrt(1 - h^2) = h cos theta_d.
-void add_kinks(const Dir& d, double h, std::vector<double>& cuts) {
-  if (d.s <= 0) return;
-  const double k = h * d.c / (d.s * std::sqrt(std::max(1e-300, 1 - h * h)));
-  if (k >= 1) return;  // h >= sin theta_d: no shadow beyond the disc
-  const double a = std::acos(k);
-  cuts.push_back(d.phi - a);
-  cuts.push_back(d.phi + a);
+// Azimuths where r_i = r_o beyond the disc: the points of E_i's arc on E_o within
+// o's arc. With E_i's point P(t) in o's frame (u, v), f_o(P(t)) = (u cos theta_o +
+// h sin theta_o)^2 + v^2 - 1 (> 0 outside E_o: r_i > r_o there) is a trigonometric
+// polynomial of degree 2 in t.
+void crossings(const ShadowSet& ki, const ShadowSet& ko, std::vector<double>& cuts) {
+  const double dphi = ko.phi - ki.phi, cd = std::cos(dphi), sd = std::sin(dphi);
+  const double p = -ki.h * ki.s / ki.c, q = 1 / ki.c;  // P(t) = (p + q cos t, sin t)
+  // u cos theta_o + h sin theta_o = U0 + U1 cos t + U2 sin t, v = V0 + V1 cos t + V2 sin t.
+  const double U0 = ko.c * cd * p + ko.h * ko.s, U1 = ko.c * cd * q, U2 = ko.c * sd;
+  const double V0 = -sd * p, V1 = -sd * q, V2 = cd;
+  const double quad = U1 * U1 + U2 * U2 + V1 * V1 + V2 * V2;
+  const Trig2 g{U0 * U0 + V0 * V0 + 0.5 * quad - 1, 2 * (U0 * U1 + V0 * V1), 2 * (U0 * U2 + V0 * V2),
+                0.5 * (U1 * U1 - U2 * U2 + V1 * V1 - V2 * V2), U1 * U2 + V1 * V2};
+  // Rounding floor of g: a few ulps of its largest terms.
+  const double floor = 64 * std::numeric_limits<double>::epsilon() * (U0 * U0 + V0 * V0 + quad + 1);
+  std::vector<double> roots;
+  sign_changes(g, -ki.tk, ki.tk, floor, roots);
+  for (double t : roots) {
+    const double x = p + q * std::cos(t), y = std::sin(t);
+    if ((x * cd + y * sd) * ko.s < ko.h * ko.c) continue;  // outside o's half-plane: r_o = rs there
+    cuts.push_back(ki.phi + std::atan2(y, x));
+  }
 }
 
 }  // namespace
 
-double shadow_set_radius(Vec3 d_unit, double h, double psi) { return radius(dir_of(d_unit), h, psi); }
-
 double cap_shadow_union_area(Vec3 i_unit, Vec3 o_unit, double h) {
-  const Dir d_i = dir_of(i_unit), d_o = dir_of(o_unit);
-  const double rs2 = std::max(0.0, 1 - h * h);
-  // Excess of max(r_i, r_o)^2 over the disc, 1/2 ∮ dpsi, from psi0 = phi_i - pi.
-  auto excess = [&](double psi) {
-    const double r = std::max(radius(d_i, h, psi), radius(d_o, h, psi));
-    return 0.5 * (r * r - rs2);
-  };
-  const double psi0 = d_i.phi - kPi;
-  std::vector<double> cuts{psi0, psi0 + 2 * kPi};
-  std::vector<double> kinks;
-  add_kinks(d_i, h, kinks);
-  add_kinks(d_o, h, kinks);
-  if (kinks.empty()) return 0.0;  // both radii are the disc's
-  for (double k : kinks) cuts.push_back(psi0 + std::fmod(std::fmod(k - psi0, 2 * kPi) + 2 * kPi, 2 * kPi));
-  // Crossings r_i = r_o: sign changes of r_i - r_o on a grid, refined by the
-  // Illinois method. (A pair missed inside one grid step only slows the adaptive rule.)
-  constexpr int grid = 48;
-  auto diff = [&](double psi) { return radius(d_i, h, psi) - radius(d_o, h, psi); };
-  double a = psi0, fa = diff(psi0);
-  for (int k = 1; k <= grid; ++k) {
-    const double b = psi0 + 2 * kPi * k / grid, fb = diff(b);
-    if ((fa > 0 && fb < 0) || (fa < 0 && fb > 0)) {
-      double lo = a, hi = b, flo = fa, fhi = fb;
-      int side = 0;
-      for (int it = 0; it < 100 && hi - lo > 1e-14; ++it) {
-        const double x = (lo * fhi - hi * flo) / (fhi - flo), fx = diff(x);
-        if (fx == 0) {
-          lo = hi = x;
-          break;
-        }
-        if ((fx > 0) == (flo > 0)) {
-          lo = x;
-          flo = fx;
-          if (side == -1) fhi *= 0.5;
-          side = -1;
-        } else {
-          hi = x;
-          fhi = fx;
-          if (side == 1) flo *= 0.5;
-          side = 1;
-        }
-      }
-      cuts.push_back(0.5 * (lo + hi));
-    }
-    if (fb != 0) {
-      a = b;
-      fa = fb;
-    }
-  }
+  const ShadowSet ki(i_unit, h), ko(o_unit, h);
+  if (!ko.has_arc()) return ki.excess();  // K_o is the disc, inside K_i
+  if (!ki.has_arc()) return ko.excess();
+  // Cut the circle of azimuths where the boundary of K_i U K_o changes curve:
+  // the kinks of either set and the crossings of the two ellipse arcs.
+  const double psi0 = ki.phi - kPi;  // outside i's arc
+  std::vector<double> cuts{ki.phi - ki.psik, ki.phi + ki.psik, ko.phi - ko.psik, ko.phi + ko.psik};
+  crossings(ki, ko, cuts);
+  for (double& a : cuts) a = psi0 + std::fmod(std::fmod(a - psi0, 2 * kPi) + 2 * kPi, 2 * kPi);
+  cuts.push_back(psi0);
+  cuts.push_back(psi0 + 2 * kPi);
   std::sort(cuts.begin(), cuts.end());
-  // Absolute tolerance 1e-10 of the area's scale (a 10-point estimate): the
-  // area grows like 1/cos theta_d, up to ~1e3 at grazing angles.
-  static const GaussLegendre g(10);
-  double scale = 1;
-  for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
-    if (cuts[k + 1] - cuts[k] > 1e-15) scale += std::fabs(g.integrate(excess, cuts[k], cuts[k + 1]));
+  // Between cuts the boundary is the disc's (excess 0) or one ellipse arc's, the
+  // one farther out at the piece's middle: its sector in closed form.
   double sum = 0;
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-    const double lo = cuts[k], hi = cuts[k + 1];
-    if (hi - lo <= 1e-15) continue;
-    sum += integrate_adaptive(excess, lo, hi, 1e-10 * scale / cuts.size());
+    const double a = cuts[k], b = cuts[k + 1], m = 0.5 * (a + b);
+    if (b - a <= 0) continue;
+    const bool in_i = std::fabs(std::remainder(m - ki.phi, 2 * kPi)) < ki.psik;
+    const bool in_o = std::fabs(std::remainder(m - ko.phi, 2 * kPi)) < ko.psik;
+    if (!in_i && !in_o) continue;
+    const bool use_i = in_i && (!in_o || ki.ellipse_radius(std::remainder(m - ki.phi, 2 * kPi)) >=
+                                             ko.ellipse_radius(std::remainder(m - ko.phi, 2 * kPi)));
+    const ShadowSet& k_top = use_i ? ki : ko;
+    sum += k_top.arc_excess(k_top.param(a), k_top.param(b), b - a);
   }
   return sum;
 }

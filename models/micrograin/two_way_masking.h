@@ -9,21 +9,22 @@
 //   G_dist(d, h)    = exp(-rho' (|K_d(h)| - pi (1 - h^2)))            (Eq. 3/9)
 //   G_dist(i, o, h) = exp(-rho' (|K_i(h) U K_o(h)| - pi (1 - h^2))),
 // the product G_dist(i, h) G_dist(o, h) dropping |K_i(h) ∩ K_o(h)|.
-// Radius of K_d(h) at azimuth psi, u = sin theta_d cos(psi - phi_d):
-//   r_c = (-u h cos theta_d + sqrt(1 - u^2 - h^2 (sin^2 theta_d - u^2))) / (1 - u^2)
-// if r_c u > h cos theta_d (the cylinder part), else sqrt(1 - h^2) (the sphere at p).
-// |K_i U K_o| = 1/2 ∮ max(r_i, r_o)^2 dpsi, integrated by adaptive Gauss-Legendre
-// between the kinks (where a direction's radius leaves the disc and where
-// r_i = r_o), to about 1e-10 absolute. At h = 0 it is pore_shadow_union_area.
+// K_d(h) is the disc |c| < sqrt(1 - h^2) and, beyond it, an arc of an ellipse
+// E_d (shadow_set.h). |K_i U K_o| - pi (1 - h^2) in closed form: the circle of
+// azimuths is cut at each set's kinks (where its arc leaves the disc) and where
+// the two arcs cross; between cuts the union's boundary is the disc's (excess 0)
+// or one arc's, whose sector is closed form. The crossings are the sign changes,
+// on E_i's arc, of E_o's implicit equation at E_i's point of parameter t, a
+// trigonometric polynomial of degree 2: isolated by bisection certified with a
+// bound on its second derivative (a root pair can hide only in a piece narrower
+// than 1e-9 in t, or where the two ellipses agree to rounding), then polished
+// by Newton. At h = 0 it is pore_shadow_union_area.
 //
 // Directions: real unit vectors with z > 0; h in [0, 1] (unit-space height).
 #include "models/core/vec.h"
 #include "models/micrograin/grain_field.h"
 
 namespace mcref::micrograin {
-
-// Radius of K_d(h) at azimuth psi (unit space, unit-space direction d).
-double shadow_set_radius(Vec3 d_unit, double h, double psi);
 
 // |K_i(h) U K_o(h)| - pi (1 - h^2) (unit space). For i == o it is cap_shadow_area(i, h).
 double cap_shadow_union_area(Vec3 i_unit, Vec3 o_unit, double h);

@@ -1,7 +1,7 @@
 // models/micrograin: visibility from two directions (LRPB23 Eq. 22-24, vNDF Eq. 1/3;
-// issue #15): |K_i U K_o| in closed form (base point) and by kink-split
-// quadrature (height h), against Monte Carlo areas from ray-ball tests and a
-// high-resolution midpoint rule.
+// issue #15): |K_i U K_o| in closed form (base point and height h), against
+// Monte Carlo areas from ray-ball tests, a high-resolution midpoint rule and the
+// former adaptive quadrature (micrograin_union_area_reference.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,9 +11,11 @@
 #include "models/core/rng.h"
 #include "models/micrograin/pore_visibility.h"
 #include "models/micrograin/projected_area.h"
+#include "models/micrograin/shadow_set.h"
 #include "models/micrograin/two_way_masking.h"
 #include "models/micrograin/unit_space.h"
 #include "models/micrograin/visible_filling_factor.h"
+#include "tests/models/micrograin_union_area_reference.h"
 
 using namespace mcref;
 using namespace mcref::micrograin;
@@ -140,9 +142,9 @@ TEST(MicrograinPoreVisibility, UnionAreaMatchesMonteCarlo) {
 }
 
 // Height h: i == o equals the one-way shadow of vNDF Eq. 5 (LilTracer's closed form),
-// h = 0 equals the base closed form, and the kink-split quadrature matches a
-// 2e6-point midpoint rule.
-TEST(MicrograinTwoWayMasking, QuadratureMatchesClosedFormsAndMidpoint) {
+// h = 0 equals the base closed form, and the closed form matches a 2e6-point
+// midpoint rule.
+TEST(MicrograinTwoWayMasking, MatchesOtherClosedFormsAndMidpoint) {
   for (double t : {10.0, 40.0, 70.0, 85.0})
     for (double h : {0.0, 0.1, 0.5, 0.9}) {
       const Vec3 d = spherical_direction(deg(t), 1.1);
@@ -175,4 +177,75 @@ TEST(MicrograinTwoWayMasking, UnionAreaMatchesMonteCarlo) {
     const McArea mc = mc_union_area(i, o, cs.h, 1, 1, 1, reach, reach, n, seed++);
     EXPECT_NEAR(cap_shadow_union_area(i, o, cs.h), mc.area, 5 * mc.se) << cs.ti << " " << cs.to << " " << cs.phi;
   }
+}
+
+namespace {
+
+// Crossing grid of the reference (48 in the former model, which missed some).
+constexpr int kGrid = 4096;
+
+// |a - b| <= 1e-9 |b| + 1e-11: the closed form against the adaptive reference.
+::testing::AssertionResult near_reference(double model, double ref) {
+  if (std::fabs(model - ref) <= 1e-9 * std::fabs(ref) + 1e-11) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "model " << model << " reference " << ref << " diff " << model - ref;
+}
+
+}  // namespace
+
+// The closed form against the former adaptive quadrature, run at 1e-13 of the
+// area's scale, on a structured grid: theta_i, theta_o in 0.5 ... 89.99 deg, relative
+// azimuths 0 ... 180 deg (thin nearly coinciding ellipses near backscatter), h in
+// 0, 0.1, ..., 0.9, 0.99, 1. Tolerance 1e-9 relative and 1e-11 absolute.
+TEST(MicrograinTwoWayMasking, ClosedFormMatchesAdaptiveReferenceOnGrid) {
+  const double thetas[] = {0.5, 10, 30, 45, 60, 75, 85, 89, 89.9, 89.99};
+  const double dphis[] = {0, 1e-9, 1e-6, 1e-3, 0.1, 1, 90, 179, 180};
+  const double hs[] = {0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.99, 1};
+  int nonzero = 0, expected_nonzero = 0;
+  for (double ti : thetas)
+    for (double to : thetas)
+      for (double dphi : dphis)
+        for (double h : hs) {
+          const Vec3 i = spherical_direction(deg(ti), 0.7), o = spherical_direction(deg(to), 0.7 + deg(dphi));
+          const double ref = test::union_area_adaptive(i, o, h, 1e-13, kGrid);
+          nonzero += ref > 0;
+          expected_nonzero += h < std::max(std::sin(deg(ti)), std::sin(deg(to)));  // a shadow beyond the disc
+          EXPECT_TRUE(near_reference(cap_shadow_union_area(i, o, h), ref))
+              << ti << " " << to << " " << dphi << " " << h;
+        }
+  EXPECT_EQ(nonzero, expected_nonzero);  // the others compare zero with zero: not applicable
+}
+
+// Random configurations, seed 1515, 1 000 draws: polar angles log-uniform in their
+// distance to grazing (90 deg - 90 deg 10^(-4.5 u)), relative azimuth log-uniform
+// in 1e-10 ... pi rad with a random sign, h uniform in [0, 1]; same tolerance.
+TEST(MicrograinTwoWayMasking, ClosedFormMatchesAdaptiveReferenceRandom) {
+  const int kDraws = 1000;
+  Rng rng(1515);
+  for (int k = 0; k < kDraws; ++k) {
+    const double ti = 90 - 90 * std::pow(10.0, -4.5 * rng.uniform()), to = 90 - 90 * std::pow(10.0, -4.5 * rng.uniform());
+    const double dphi = (rng.uniform() < 0.5 ? -1 : 1) * kPi * std::pow(10.0, -10 * rng.uniform());
+    const double phi_i = 2 * kPi * rng.uniform(), h = rng.uniform();
+    const Vec3 i = spherical_direction(deg(ti), phi_i), o = spherical_direction(deg(to), phi_i + dphi);
+    const double ref = test::union_area_adaptive(i, o, h, 1e-13, kGrid);
+    EXPECT_TRUE(near_reference(cap_shadow_union_area(i, o, h), ref)) << k << ": " << ti << " " << to << " " << dphi << " " << h;
+  }
+}
+
+// i == o: the single set's excess, equal to the one-way shadow of vNDF Eq. 5
+// (LilTracer's closed form, projected_area.h); i <-> o symmetric.
+TEST(MicrograinTwoWayMasking, BackscatterAndSymmetry) {
+  const double thetas[] = {0.5, 10, 30, 45, 60, 75, 85, 89, 89.9, 89.99};
+  for (double t : thetas)
+    for (double h : {0.0, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99, 1.0}) {
+      const Vec3 d = spherical_direction(deg(t), 2.5);
+      const double one = cap_shadow_area(d, h);
+      EXPECT_NEAR(cap_shadow_union_area(d, d, h), one, 1e-12 * one + 1e-14) << t << " " << h;
+      EXPECT_NEAR(ShadowSet(d, h).excess(), one, 1e-12 * one + 1e-14) << t << " " << h;
+      for (double to : thetas)
+        for (double dphi : {1e-9, 1e-3, 1.0, 3.0}) {
+          const Vec3 o = spherical_direction(deg(to), 2.5 + dphi);
+          const double io = cap_shadow_union_area(d, o, h), oi = cap_shadow_union_area(o, d, h);
+          EXPECT_NEAR(io, oi, 1e-12 * io + 1e-14) << t << " " << to << " " << dphi << " " << h;
+        }
+    }
 }
