@@ -1,5 +1,8 @@
 #include "validate/micrograin/brdf_cell_rule.h"
 
+#include <array>
+#include <cmath>
+
 #include "models/core/quadrature.h"
 
 namespace mcref {
@@ -44,6 +47,25 @@ Rules::Rules() {
     x3[k] = 0.5 * (1 + g3.x[k]);
     w3[k] = 0.5 * g3.w[k];
   }
+}
+
+const std::vector<EdgeNode>& edge_nodes(int level) {
+  static const std::array<std::vector<EdgeNode>, kEdgeLevels + 1> levels = [] {
+    std::array<std::vector<EdgeNode>, kEdgeLevels + 1> out;
+    for (int l = 1; l <= kEdgeLevels; ++l) {
+      const double h = std::ldexp(1.0, -l);
+      for (int k = -(64 << l); k <= (64 << l); ++k) {
+        const double t = k * h, a = 0.5 * kPi * std::sinh(t), e = std::exp(-2 * std::fabs(a));
+        const double near = e / (1 + e);  // distance of s to the nearer end, accurately
+        const double s = t < 0 ? near : 1 - near;
+        if (near < (t < 0 ? 1e-10 : 1e-4)) continue;
+        const double w = h * 0.25 * kPi * std::cosh(t) * 4 * e / ((1 + e) * (1 + e));  // h ds/dt
+        out[l].push_back({s, w, k % 2 == 0});
+      }
+    }
+    return out;
+  }();
+  return levels[level];
 }
 
 const Rules& rules() {

@@ -64,53 +64,97 @@ struct Rules {
 };
 const Rules& rules();
 
-template <int N, class G>
-void product_rules(const G& g, const GradedInterval& t, const GradedInterval& p, double u0, double u1, double v0,
-                   double v1, std::array<double, N>& q4, std::array<double, N>& q3) {
-  const Rules& r = rules();
-  double val[N];
-  auto product = [&](const double* x, const double* w, int n, std::array<double, N>& q) {
-    q.fill(0);
-    for (int a = 0; a < n; ++a)
-      for (int b = 0; b < n; ++b) {
-        const double u = u0 + (u1 - u0) * x[a], v = v0 + (v1 - v0) * x[b];
-        const double wt = w[a] * w[b] * t.dx(u) * p.dx(v);
-        g(t.x(u), p.x(v), val);
-        for (int k = 0; k < N; ++k) q[k] += wt * val[k];
-      }
-  };
-  product(r.x4, r.w4, 4, q4);
-  product(r.x3, r.w3, 3, q3);
-  const double area = (u1 - u0) * (v1 - v0);
-  for (int k = 0; k < N; ++k) {
-    q4[k] *= area;
-    q3[k] *= area;
-  }
-}
+// Tanh-sinh (double exponential) nodes on [0, 1] for a piece ending at the
+// grazing edge s = 1 (theta = pi/2), where g ~ x^p (1 + c x^q + ...), x = pi/2 - theta,
+// p ≈ 1-2 and q not an integer (validate/FINDINGS.md): s = (1 + tanh(pi/2 sinh t)) / 2,
+// t = k h, h = 2^-level. Kept while 1 - s >= 1e-4 (the edge, where g = O(x)) and
+// s >= 1e-10 (the smooth end); `even` marks the nodes of level - 1 (nested rules).
+struct EdgeNode {
+  double s, w;  // node and weight (h ds/dt) on [0, 1]
+  bool even;
+};
+const std::vector<EdgeNode>& edge_nodes(int level);
+constexpr int kEdgeLevels = 5;  // levels 2..5 (h = 1/4 .. 1/32)
 
+// g over [0, 1]^2 pieces of the cell in mapped coordinates (u along theta, v along phi).
 template <int N>
 struct Piece {
   GradedInterval t, p;
   double u0, u1, v0, v1;
-  std::array<double, N> q4, q3;
+  int edge_level;                // 0: Gauss-Legendre in theta; > 0: tanh-sinh at that level
+  std::array<double, N> q, err;  // the estimate and its error bound
+  double theta_share;            // edge pieces: the share of err from the theta rule
 };
 
-// Global adaptivity: while the summed estimates |Q4 - Q3| exceed tol in some
-// component, the piece with the largest estimate (relative to tol) is split: at
-// the grazing edge in theta only, 0.15 of it at the edge (a geometric mesh: there
-// g ~ (pi/2 - theta)^p with p not an integer, smooth in phi), elsewhere in four.
+template <int N, class G>
+void product_rules(const G& g, Piece<N>& pc) {
+  const Rules& r = rules();
+  double val[N];
+  const double du = pc.u1 - pc.u0, dv = pc.v1 - pc.v0;
+  auto at = [&](double u, double v, double wt, std::array<double, N>& q) {
+    g(pc.t.x(u), pc.p.x(v), val);
+    const double w = wt * pc.t.dx(u) * pc.p.dx(v) * du * dv;
+    for (int k = 0; k < N; ++k) q[k] += w * val[k];
+  };
+  std::array<double, N> q4{}, q3{};
+  if (pc.edge_level == 0) {
+    // 4 x 4 Gauss-Legendre checked against 3 x 3: |Q4 - Q3| bounds Q4's error.
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) at(pc.u0 + du * r.x4[a], pc.v0 + dv * r.x4[b], r.w4[a] * r.w4[b], q4);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) at(pc.u0 + du * r.x3[a], pc.v0 + dv * r.x3[b], r.w3[a] * r.w3[b], q3);
+    pc.q = q4;
+    for (int k = 0; k < N; ++k) pc.err[k] = std::fabs(q4[k] - q3[k]);
+    pc.theta_share = 0;
+    return;
+  }
+  // Edge piece: tanh-sinh in theta x 4-point Gauss-Legendre in phi (Q), against
+  // the previous level's nodes (Q', every other node, weights doubled) and, on
+  // those, 3 points in phi (Q''). The tanh-sinh error roughly squares per level
+  // (relative), so |Q - Q'|^2 / |Q| bounds Q's theta error; |Q' - Q''| bounds
+  // its phi error; the last kept edge term bounds the part beyond 1 - s = 1e-4.
+  std::array<double, N> q_prev{}, q_prev3{}, last{};
+  const std::vector<EdgeNode>& nodes = edge_nodes(pc.edge_level);
+  for (std::size_t j = 0; j < nodes.size(); ++j) {
+    const EdgeNode& e = nodes[j];
+    std::array<double, N> row{};
+    for (int b = 0; b < 4; ++b) at(pc.u0 + du * e.s, pc.v0 + dv * r.x4[b], e.w * r.w4[b], row);
+    for (int k = 0; k < N; ++k) {
+      q4[k] += row[k];
+      if (e.even) q_prev[k] += 2 * row[k];
+    }
+    if (e.even)
+      for (int b = 0; b < 3; ++b) at(pc.u0 + du * e.s, pc.v0 + dv * r.x3[b], 2 * e.w * r.w3[b], q_prev3);
+    if (j + 1 == nodes.size()) last = row;
+  }
+  pc.q = q4;
+  double theta_err = 0, total = 0;
+  for (int k = 0; k < N; ++k) {
+    const double d = std::fabs(q4[k] - q_prev[k]);
+    const double te = d * std::fmin(1.0, d / (std::fabs(q4[k]) + 1e-300)) + std::fabs(last[k]);
+    pc.err[k] = te + std::fabs(q_prev[k] - q_prev3[k]);
+    theta_err += te;
+    total += pc.err[k];
+  }
+  pc.theta_share = total > 0 ? theta_err / total : 0;
+}
+
+// Global adaptivity: while the summed error bounds exceed tol in some component,
+// the piece with the largest bound (relative to tol) is refined: a Gauss-Legendre
+// piece split in four; an edge piece raised one tanh-sinh level when its theta
+// rule dominates its bound (at most kEdgeLevels), else halved in phi.
 template <int N, class G>
 std::array<double, N> refine(const G& g, std::vector<Piece<N>> pieces, const std::array<double, N>& tol,
                              int max_splits) {
   auto excess = [&](const Piece<N>& pc) {
     double e = 0;
-    for (int k = 0; k < N; ++k) e = std::fmax(e, std::fabs(pc.q4[k] - pc.q3[k]) / tol[k]);
+    for (int k = 0; k < N; ++k) e = std::fmax(e, pc.err[k] / tol[k]);
     return e;
   };
   for (int split = 0; split < max_splits; ++split) {
     std::array<double, N> err{};
     for (const Piece<N>& pc : pieces)
-      for (int k = 0; k < N; ++k) err[k] += std::fabs(pc.q4[k] - pc.q3[k]);
+      for (int k = 0; k < N; ++k) err[k] += pc.err[k];
     bool ok = true;
     for (int k = 0; k < N; ++k) ok = ok && err[k] <= tol[k];
     if (ok) break;
@@ -120,22 +164,26 @@ std::array<double, N> refine(const G& g, std::vector<Piece<N>> pieces, const std
     const Piece<N> pc = pieces[worst];
     pieces.erase(pieces.begin() + static_cast<std::ptrdiff_t>(worst));
     const double um = 0.5 * (pc.u0 + pc.u1), vm = 0.5 * (pc.v0 + pc.v1);
-    std::vector<std::array<double, 4>> boxes;
-    if (pc.u1 == 1 && pc.t.graded == 0 && std::fabs(pc.t.hi - kPi / 2) < 1e-12) {
-      const double ue = pc.u1 - 0.15 * (pc.u1 - pc.u0);
-      boxes = {{pc.u0, ue, pc.v0, pc.v1}, {ue, pc.u1, pc.v0, pc.v1}};
+    std::vector<Piece<N>> children;
+    if (pc.edge_level > 0 && pc.theta_share > 0.5 && pc.edge_level < kEdgeLevels) {
+      children = {pc};
+      ++children[0].edge_level;
+    } else if (pc.edge_level > 0) {
+      children = {pc, pc};
+      children[0].v1 = children[1].v0 = vm;
     } else {
-      boxes = {{pc.u0, um, pc.v0, vm}, {um, pc.u1, pc.v0, vm}, {pc.u0, um, vm, pc.v1}, {um, pc.u1, vm, pc.v1}};
+      children.assign(4, pc);
+      children[0].u1 = children[1].u0 = children[2].u1 = children[3].u0 = um;
+      children[0].v1 = children[1].v1 = children[2].v0 = children[3].v0 = vm;
     }
-    for (const auto& c : boxes) {
-      Piece<N> child{pc.t, pc.p, c[0], c[1], c[2], c[3], {}, {}};
-      product_rules<N>(g, pc.t, pc.p, c[0], c[1], c[2], c[3], child.q4, child.q3);
-      pieces.push_back(child);
+    for (Piece<N>& c : children) {
+      product_rules<N>(g, c);
+      pieces.push_back(c);
     }
   }
   std::array<double, N> sum{};
   for (const Piece<N>& pc : pieces)
-    for (int k = 0; k < N; ++k) sum[k] += pc.q4[k];
+    for (int k = 0; k < N; ++k) sum[k] += pc.q[k];
   return sum;
 }
 
@@ -150,14 +198,17 @@ std::array<double, N> cell_rule(const G& g, double theta_i, double t0, double t1
   const std::vector<GradedInterval> ts = graded_pieces(t0, t1, {theta_i}, theta_parts);
   std::vector<detail::Piece<N>> pieces;
   std::array<double, N> scale{};
-  for (const GradedInterval& t : ts) {
+  for (GradedInterval t : ts) {
+    // The piece at the grazing edge: tanh-sinh in theta, which also takes a kink at its other end.
+    const bool edge = std::fabs(t.hi - kPi / 2) < 1e-12;
+    if (edge) t.graded = 0;
     const bool at_kink = std::fabs(t.lo - theta_i) < 1e-12 || std::fabs(t.hi - theta_i) < 1e-12;
     const std::vector<double> phi_kinks =
         at_kink ? std::vector<double>{-kPi, 0.0, kPi, 2 * kPi} : std::vector<double>{};
     for (const GradedInterval& p : graded_pieces(p0, p1, phi_kinks, phi_parts)) {
-      detail::Piece<N> pc{t, p, 0, 1, 0, 1, {}, {}};
-      detail::product_rules<N>(g, t, p, 0, 1, 0, 1, pc.q4, pc.q3);
-      for (int k = 0; k < N; ++k) scale[k] += std::fabs(pc.q4[k]);
+      detail::Piece<N> pc{t, p, 0, 1, 0, 1, edge ? 2 : 0, {}, {}, 0};
+      detail::product_rules<N>(g, pc);
+      for (int k = 0; k < N; ++k) scale[k] += std::fabs(pc.q[k]);
       pieces.push_back(pc);
     }
   }
