@@ -9,16 +9,18 @@
 //   turns (x - a)^(k/2) into a polynomial in u. In phi, only pieces touching
 //   theta_i are graded (the cusp and the peak sit at theta_o = theta_i).
 // - Each piece: 4 x 4 Gauss-Legendre in (u, v), checked against 3 x 3 (a-posteriori:
-//   |Q4 - Q3| bounds Q4's error, which is far smaller). While the summed estimates
-//   exceed the cell's tolerance, the worst piece is split (global adaptivity): at
-//   the grazing edge in theta only, 0.15 of it at the edge (a geometric mesh; there
-//   g ~ (pi/2 - theta)^p, p not an integer, smooth in phi), elsewhere in four.
-// The nodes depend only on the cell and theta_i until a check fails, so models of
-// one table share them (geometry_memo.h).
-// Status (issue #15, part 4; branch `cells`): the accuracy is not yet verified
-// against the references, and the grazing cells need far more nodes than the
-// former 3 x 3 rule, each dearer (the union geometry near grazing): see
-// validate/FINDINGS.md.
+//   |Q4 - Q3| bounds Q4's error, which is far smaller).
+// - The piece ending at the grazing edge theta_o = pi/2: there g ~ x^p (a + b x^q ...),
+//   x = pi/2 - theta_o, with q not an integer (the G_dist diffuse term: g / x still
+//   drifts by ~1-2 % per decade of x at x = 1e-5; the grains' specular lobe peaks at
+//   x ~ 1e-3 and vanishes below 1e-4), which no polynomial rule resolves. It takes
+//   tanh-sinh in theta_o (exponential convergence for such ends; nested levels give
+//   its error estimate; the same end treatment takes a kink at theta_i at its other
+//   end) times 4-point Gauss-Legendre in phi.
+// While the summed estimates exceed the cell's tolerance, the worst piece is refined
+// (global adaptivity). The nodes depend only on the cell and theta_i until a check
+// fails, so models of one table share most of them (geometry_memo.h).
+// Verified against independent references (tests/validate/micrograin/test_brdf_cell_average.cpp).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -74,7 +76,7 @@ struct EdgeNode {
   bool even;
 };
 const std::vector<EdgeNode>& edge_nodes(int level);
-constexpr int kEdgeLevels = 5;  // levels 2..5 (h = 1/4 .. 1/32)
+constexpr int kEdgeLevels = 6;  // levels 3..6 (h = 1/8 .. 1/64)
 
 // g over [0, 1]^2 pieces of the cell in mapped coordinates (u along theta, v along phi).
 template <int N>
@@ -110,9 +112,10 @@ void product_rules(const G& g, Piece<N>& pc) {
   }
   // Edge piece: tanh-sinh in theta x 4-point Gauss-Legendre in phi (Q), against
   // the previous level's nodes (Q', every other node, weights doubled) and, on
-  // those, 3 points in phi (Q''). The tanh-sinh error roughly squares per level
-  // (relative), so |Q - Q'|^2 / |Q| bounds Q's theta error; |Q' - Q''| bounds
-  // its phi error; the last kept edge term bounds the part beyond 1 - s = 1e-4.
+  // those, 3 points in phi (Q''). |Q - Q'| bounds Q's theta error (the error of a
+  // tanh-sinh level roughly squares at the next, but not before the nodes resolve
+  // the grains' specular peak near grazing, so the square is not used); |Q' - Q''|
+  // bounds its phi error; the last kept edge term the part beyond 1 - s = 1e-4.
   std::array<double, N> q_prev{}, q_prev3{}, last{};
   const std::vector<EdgeNode>& nodes = edge_nodes(pc.edge_level);
   for (std::size_t j = 0; j < nodes.size(); ++j) {
@@ -131,7 +134,7 @@ void product_rules(const G& g, Piece<N>& pc) {
   double theta_err = 0, total = 0;
   for (int k = 0; k < N; ++k) {
     const double d = std::fabs(q4[k] - q_prev[k]);
-    const double te = d * std::fmin(1.0, d / (std::fabs(q4[k]) + 1e-300)) + std::fabs(last[k]);
+    const double te = d + std::fabs(last[k]);
     pc.err[k] = te + std::fabs(q_prev[k] - q_prev3[k]);
     theta_err += te;
     total += pc.err[k];
@@ -206,7 +209,7 @@ std::array<double, N> cell_rule(const G& g, double theta_i, double t0, double t1
     const std::vector<double> phi_kinks =
         at_kink ? std::vector<double>{-kPi, 0.0, kPi, 2 * kPi} : std::vector<double>{};
     for (const GradedInterval& p : graded_pieces(p0, p1, phi_kinks, phi_parts)) {
-      detail::Piece<N> pc{t, p, 0, 1, 0, 1, edge ? 2 : 0, {}, {}, 0};
+      detail::Piece<N> pc{t, p, 0, 1, 0, 1, edge ? 3 : 0, {}, {}, 0};
       detail::product_rules<N>(g, pc);
       for (int k = 0; k < N; ++k) scale[k] += std::fabs(pc.q[k]);
       pieces.push_back(pc);
