@@ -23,11 +23,11 @@ struct ModelInfo {
 };
 
 // Accuracy of the micrograin geometry statistics' bin averages (NDF, vNDF,
-// conditional masking, g1_g_dist; issue #15, part 4), as tested against
-// references (tests/validate/micrograin/test_geometry_cell_average.cpp). The
-// BRDF cell averages still use fixed per-cell rules
-// (validate/micrograin/micrograin_brdf_models.cpp), as do the slab and sphere
-// families (validate/slab, validate/spheres).
+// conditional masking, g1_g_dist) and of the micrograin BRDF cell averages and
+// albedo hemispheres (issue #15, part 4), as tested against references
+// (tests/validate/micrograin/test_geometry_cell_average.cpp,
+// test_brdf_cell_average.cpp). The slab and sphere families still use fixed
+// per-cell rules (validate/slab, validate/spheres).
 constexpr double kCellRelTolerance = 1e-6;
 
 // Model values on the cells of `table` (same layout as table.values()).

@@ -4,16 +4,18 @@
 // and on albedo / delta tables as directional energies. None is exact for the
 // explicit geometry (all are single-scattering models, and their masking
 // terms approximate the true visibility); see micrograin_bsdf.h.
+#include <array>
 #include <cmath>
 #include <map>
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
 
-#include "models/core/quadrature.h"
 #include "models/micrograin/micrograin_bsdf.h"
 #include "sim/tally/brdf_tally.h"
+#include "validate/micrograin/brdf_cell_rule.h"
 #include "validate/micrograin/geometry_memo.h"
+#include "validate/micrograin/micrograin_brdf_value.h"
 #include "validate/micrograin/simulated_pore_base.h"
 #include "validate/model_evaluation.h"
 
@@ -138,10 +140,8 @@ std::vector<ModelInfo> model_list() {
   return m;
 }
 
-// f of one model for all channels; sharp_only: the grains' specular lobe alone
-// (the part whose peak a coarse cell rule can miss; issue #15, part 5).
-void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 i, Vec3 o, double out[3],
-            bool sharp_only = false) {
+// f of one model for all channels.
+void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 i, Vec3 o, double out[3]) {
   // The G_dist diffuse and specular geometries are channel-independent: computed once
   // (the diffuse one once for all models of a table: geometry_memo.h).
   double geometry = -1, specular_geometry = -1;
@@ -151,18 +151,9 @@ void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& m
     return specular_geometry * mg::specular_fresnel(g, dot(i, normalize(i + o))) / (4 * i.z * o.z);
   };
   for (int k = 0; k < 3; ++k) {
-    mg::MicroSurface g = channel_of(mat.grain, k);
+    const mg::MicroSurface g = channel_of(mat.grain, k);
     const mg::MicroSurface b = channel_of(mat.base, k);
     double v = 0;
-    if (sharp_only) {
-      if (s.part != Spec::Part::Base && g.type != mg::MicroSurface::Type::Lambertian) {
-        g.kd = 0;  // diffuse + specular grains: the specular lobe alone (LRPB23 form)
-        v = s.form == Spec::Form::Lrpb23 ? mg::lrpb23_grain_part(f, g, i, o, s.lambda, s.g2)
-                                         : specular(g);
-      }
-      out[k] = v;
-      continue;
-    }
     if (s.part != Spec::Part::Base) {
       if (s.form == Spec::Form::Lrpb23) {
         v += mg::lrpb23_grain_part(f, g, i, o, s.lambda, s.g2);
@@ -183,83 +174,42 @@ void eval_f(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& m
   }
 }
 
-// ∫∫ f mu dmu dphi of one model over [mu0, mu1] x [p0, p1] by an n x n product rule.
-void cell_integral(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 wi, double phi_i,
-                   double mu0, double mu1, double p0, double p1, const GaussLegendre& g, bool sharp_only, double out[3]) {
-  out[0] = out[1] = out[2] = 0;
-  const std::size_t n = g.x.size();
-  for (std::size_t u = 0; u < n; ++u)
-    for (std::size_t v = 0; v < n; ++v) {
-      const double mu = 0.5 * (mu0 + mu1) + 0.5 * (mu1 - mu0) * g.x[u];
-      const double phi = 0.5 * (p0 + p1) + 0.5 * (p1 - p0) * g.x[v];
-      const double w = 0.25 * (mu1 - mu0) * (p1 - p0) * g.w[u] * g.w[v] * mu;
-      const Vec3 wo = spherical_direction(std::acos(std::fmin(1.0, mu)), phi_i + phi);
-      double fv[3];
-      eval_f(s, f, mat, wi, wo, fv, sharp_only);
-      for (int k = 0; k < 3; ++k) out[k] += w * fv[k];
-    }
+// The cell rule's tolerance (brdf_cell_rule.h): half of kCellRelTolerance, and a
+// floor of 1e-12 sr^-1 on a cell's average f (cells at zero; model_evaluation.h).
+CellRuleTolerance cell_tolerance(double t0, double t1, double p0, double p1) {
+  const double cos_sin = 0.5 * (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0)) * std::fabs(p1 - p0);
+  return {0.5 * kCellRelTolerance, 1e-12 * cos_sin};
 }
 
-// The sharp part's cell integral, refined by quadrisection until the children
-// agree with their parent to tol (halved per level, at most `depth` levels; the
-// caller asks 1e-5 of the cell's integral, far below the simulation's error bars).
-void sharp_cell_integral(const Spec& s, const mg::GrainField& f, const MicrograinMaterials& mat, Vec3 wi, double phi_i,
-                         double mu0, double mu1, double p0, double p1, const double whole[3], double tol, int depth,
-                         double out[3]) {
-  static const GaussLegendre g(4);
-  const double mm = 0.5 * (mu0 + mu1), pm = 0.5 * (p0 + p1);
-  const double box[4][4] = {{mu0, mm, p0, pm}, {mm, mu1, p0, pm}, {mu0, mm, pm, p1}, {mm, mu1, pm, p1}};
-  double child[4][3], sum[3] = {0, 0, 0};
-  for (int c = 0; c < 4; ++c) {
-    cell_integral(s, f, mat, wi, phi_i, box[c][0], box[c][1], box[c][2], box[c][3], g, true, child[c]);
-    for (int k = 0; k < 3; ++k) sum[k] += child[c][k];
-  }
-  double diff = 0;
-  for (int k = 0; k < 3; ++k) diff = std::fmax(diff, std::fabs(sum[k] - whole[k]));
-  if (depth <= 0 || diff <= tol) {
-    for (int k = 0; k < 3; ++k) out[k] = sum[k];
-    return;
-  }
-  out[0] = out[1] = out[2] = 0;
-  for (int c = 0; c < 4; ++c) {
-    double r[3];
-    sharp_cell_integral(s, f, mat, wi, phi_i, box[c][0], box[c][1], box[c][2], box[c][3], child[c], 0.5 * tol, depth - 1, r);
-    for (int k = 0; k < 3; ++k) out[k] += r[k];
-  }
+// g = f cos theta_o sin theta_o of parts[p] in components 3p..3p+2, phi relative to phi_i.
+template <int N>
+auto cosine_weighted(const std::array<Spec, N / 3>& parts, const mg::GrainField& f, const MicrograinMaterials& mat,
+                     Vec3 wi, double phi_i) {
+  return [&parts, &f, &mat, wi, phi_i](double theta, double phi, double* out) {
+    const Vec3 wo = spherical_direction(theta, phi_i + phi);
+    const double w = std::cos(theta) * std::sin(theta);
+    for (int p = 0; p < N / 3; ++p) {
+      eval_f(parts[p], f, mat, wi, wo, out + 3 * p);
+      for (int k = 0; k < 3; ++k) out[3 * p + k] *= w;
+    }
+  };
 }
 
 std::vector<double> evaluate_brdf(const Spec& s, const Table& t, const Experiment& ex, const mg::GrainField& f) {
   std::vector<double> out(t.cells(), NAN);
   const Axis &ti = t.axes[0], &pi = t.axes[1], &to = t.axes[2], &ph = t.axes[3];
-  const int n = s.form == Spec::Form::Gdist ? 3 : 6;
-  const GaussLegendre g(n);
-  // Grains with a specular lobe: a fixed n x n rule can miss its peak in a
-  // coarse cell (at theta_i = 89 deg it gave 0.04 for 1.20 in a 45 x 180 deg
-  // cell; issue #15, part 5). That lobe alone is then integrated adaptively
-  // and replaces its share of the fixed rule; the smooth rest keeps the n x n rule.
-  const MicroBrdf::Type grain = ex.materials.grain.type;
-  const bool sharp = s.part != Spec::Part::Base &&
-                     (grain == MicroBrdf::Type::Conductor || grain == MicroBrdf::Type::DiffuseSpecular);
+  const std::array<Spec, 1> parts{s};
   const CellsDone done = cell_progress();  // read here: the tasks below run on other threads
   // One task per (theta_i, phi_i, theta_o) row of cells; each writes only its own cells.
   tbb::parallel_for(std::size_t{0}, ti.size() * pi.size() * to.size(), [&](std::size_t row) {
     const std::size_t a = row / (pi.size() * to.size()), b = row / to.size() % pi.size(), c = row % to.size();
     const Vec3 wi = spherical_direction(ti.values[a], pi.values[b]);
-    const double mu0 = std::cos(to.upper(c)), mu1 = std::cos(to.lower(c));
+    const auto g = cosine_weighted<3>(parts, f, ex.materials, wi, pi.values[b]);
+    const double t0 = to.lower(c), t1 = to.upper(c);
     for (std::size_t d = 0; d < ph.size(); ++d) {
       const double p0 = ph.lower(d), p1 = ph.upper(d);
-      const double den = 0.5 * (mu1 * mu1 - mu0 * mu0) * (p1 - p0);  // ∫∫ mu dmu dphi
-      double num[3];
-      cell_integral(s, f, ex.materials, wi, pi.values[b], mu0, mu1, p0, p1, g, false, num);
-      if (sharp) {
-        double coarse[3], start[3], fine[3];
-        cell_integral(s, f, ex.materials, wi, pi.values[b], mu0, mu1, p0, p1, g, true, coarse);
-        static const GaussLegendre g4(4);
-        cell_integral(s, f, ex.materials, wi, pi.values[b], mu0, mu1, p0, p1, g4, true, start);
-        const double scale = std::fmax(std::fabs(num[0]), std::fmax(std::fabs(num[1]), std::fabs(num[2])));
-        sharp_cell_integral(s, f, ex.materials, wi, pi.values[b], mu0, mu1, p0, p1, start, 1e-5 * scale + 1e-300, 7, fine);
-        for (int k = 0; k < 3; ++k) num[k] += fine[k] - coarse[k];
-      }
+      const double den = 0.5 * (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0)) * (p1 - p0);  // ∫∫ cos sin
+      const std::array<double, 3> num = cell_rule<3>(g, ti.values[a], t0, t1, p0, p1, cell_tolerance(t0, t1, p0, p1));
       for (std::size_t k = 0; k < 3; ++k) out[t.index({a, b, c, d, k})] = num[k] / den;
     }
     done(ph.size() * 3);
@@ -272,7 +222,6 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
   const bool delta_table = is_delta_table(t.name);
   const Axis &ti = t.axes[0], &pi = t.axes[1];
   const std::size_t total = t.axes[2].size() - 1, grain_component = 0, base = 1;  // order1_grain, order1_base
-  const GaussLegendre gm(24), gp(24);
   const CellsDone done = cell_progress();
   const std::size_t cells_per_direction = t.cells() / (ti.size() * pi.size());
   // One task per incident direction; each writes only its own cells.
@@ -291,28 +240,20 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
     }
     // Energy of the grain part and of the base part (order-1 components of
     // the table), so that a model's error splits into its order-1 terms and
-    // the multiple scattering it leaves out.
-    double e[2][3] = {{0, 0, 0}, {0, 0, 0}};
+    // the multiple scattering it leaves out: the cell rule over the hemisphere
+    // (isotropic fields: phi in [0, pi], twice), 4 x 4 pieces to start with.
     const double span = ex.isotropic ? kPi : 2 * kPi;
-    const Spec grain{Spec::Part::Grain, s.form, s.lambda, false, s.masking, s.g2};
-    const Spec base_part{Spec::Part::Base, s.form, s.lambda, false, s.masking, s.g2};
-    for (std::size_t u = 0; u < gm.x.size(); ++u)
-      for (std::size_t v = 0; v < gp.x.size(); ++v) {
-        const double mu = 0.5 + 0.5 * gm.x[u], phi = 0.5 * span * (1 + gp.x[v]);
-        const Vec3 wo = spherical_direction(std::acos(mu), pi.values[b] + phi);
-        const double w = 0.5 * gm.w[u] * 0.5 * span * gp.w[v] * mu * (ex.isotropic ? 2 : 1);
-        double fg[3], fb[3];
-        eval_f(grain, f, ex.materials, wi, wo, fg);
-        eval_f(base_part, f, ex.materials, wi, wo, fb);
-        for (int k = 0; k < 3; ++k) {
-          e[0][k] += w * fg[k];
-          e[1][k] += w * fb[k];
-        }
-      }
+    const std::array<Spec, 2> parts{Spec{Spec::Part::Grain, s.form, s.lambda, false, s.masking, s.g2},
+                                    Spec{Spec::Part::Base, s.form, s.lambda, false, s.masking, s.g2}};
+    const std::array<double, 6> energy =
+        cell_rule<6>(cosine_weighted<6>(parts, f, ex.materials, wi, pi.values[b]), ti.values[a], 0.0, kPi / 2, 0.0,
+                     span, cell_tolerance(0.0, kPi / 2, 0.0, span), 4, 4);
+    const double fold = ex.isotropic ? 2 : 1;
     for (std::size_t k = 0; k < 3; ++k) {
-      out[t.index({a, b, grain_component, k})] = e[0][k];
-      out[t.index({a, b, base, k})] = e[1][k] + delta[k];
-      out[t.index({a, b, total, k})] = e[0][k] + e[1][k] + delta[k];
+      const double grain_energy = fold * energy[k], base_energy = fold * energy[3 + k] + delta[k];
+      out[t.index({a, b, grain_component, k})] = grain_energy;
+      out[t.index({a, b, base, k})] = base_energy;
+      out[t.index({a, b, total, k})] = grain_energy + base_energy;
     }
     done(cells_per_direction);
   });
@@ -383,6 +324,13 @@ std::string unsupported(const std::string& model, const Experiment& ex) {
 }
 
 }  // namespace
+
+void micrograin_brdf_value(const std::string& model, const Experiment& ex, Vec3 i, Vec3 o, double out[3]) {
+  const auto it = specs().find(model);
+  if (it == specs().end() || it->second.simulated_vp) throw std::invalid_argument("no analytic model " + model);
+  const MicrograinGeometry& geo = ex.micrograin;
+  eval_f(it->second, mg::GrainField{geo.tau0, geo.beta_x, geo.beta_y}, ex.materials, i, o, out);
+}
 
 const ModelFamily& micrograin_brdf_models() {
   static const ModelFamily family{model_list(), evaluate, evaluate_stderr, unsupported};
