@@ -95,12 +95,16 @@ class GridFlight final : public FreeFlight {
   double lateral_period() const override { return m_.geometry().grid.tile; }
 
  private:
+  // The depth cell holding a depth (on a face: the cell below it).
+  static int depth_cell(const LayerMajorants& M, double depth) {
+    return static_cast<int>(std::upper_bound(M.faces.begin() + 1, M.faces.end() - 1, depth) - (M.faces.begin() + 1));
+  }
+
   // A laterally uniform layer: the depth cells along the ray; tau is the
   // optical depth left (carried to the next layer if the photon reaches a face).
   Leg fly_depth(const LayerMajorants& M, Photon& p, double& tau, Rng& rng) {
     const double rate = -p.d.z, inv_rate = 1 / rate, f = M.factor(p.d);
-    // The cell holding the photon (on a face: the cell below it).
-    int iz = static_cast<int>(std::upper_bound(M.faces.begin() + 1, M.faces.end() - 1, p.depth) - (M.faces.begin() + 1));
+    int iz = depth_cell(M, p.depth);
     const auto face_t = [&](int cell) {
       return rate > 0 ? (M.faces[cell + 1] - p.depth) * inv_rate : rate < 0 ? (M.faces[cell] - p.depth) * inv_rate : INFINITY;
     };
@@ -151,7 +155,7 @@ class GridFlight final : public FreeFlight {
     int ix = std::min(static_cast<int>(fx), m - 1), iy = std::min(static_cast<int>(fy), m - 1);
     fx -= ix;
     fy -= iy;
-    int iz = static_cast<int>(std::upper_bound(M.faces.begin() + 1, M.faces.end() - 1, p.depth) - (M.faces.begin() + 1));
+    int iz = M.depth_cells() == 1 ? 0 : depth_cell(M, p.depth);
     if (rate == 0 && !(M.row_hi[iz] > 0)) return Leg::kLost;  // horizontal in empty cells (measure zero)
     const auto wrap_cell = [m](int i) { return i >= m ? i - m : i < 0 ? i + m : i; };
     // Moves the photon by s (within its box) and makes its cell the next box's start.

@@ -8,14 +8,18 @@
 // rho (VoxelDensity) and S (GridLookup, BoxSampler) trilinearly from the voxels
 // at the corners of the voxel cell around x: a convex combination of them
 // (to rounding, which kMargin covers), so in a voxel cell
-//   min_corners rho <= rho(x) <= max_corners rho,
+//   min_corners rho <= rho(x) <= max_corners rho (over a sub-box of the voxel
+//   cell: min and max over the sub-box's corners, rho being multilinear),
 //   sigma(w; S(x))^2 = sum_i w_i w^T S_i w <= max_corners lambda_max(S_i).
 // The corner past the last column is read both as stored (column N) and wrapped
 // (column 0): the bounds hold whether or not the grid stores the periodic seam.
 //
-// Cells: laterally one per voxel column (m = lateral_voxels; or square blocks
-// of columns, for tests), or one for the whole tile when the layer's density
-// does not vary laterally (m = 1); in depth,
+// Cells: laterally kSubdivision^2 per voxel column (m = kSubdivision
+// lateral_voxels; or one per square block of columns, for tests), or one for
+// the whole tile when the layer's density does not vary laterally (m = 1). In a
+// voxel cell the reconstruction is multilinear (trilinear), so over a cell's
+// part in one voxel cell its bounds are at that part's corners: the voxels'
+// interpolant there (in double) is what lo and hi bound; in depth,
 // runs of voxel intervals, merged while in every column the run's bounds stay
 // within kMergeRange of each interval's own (a constant profile: one cell). Per cell:
 //  - hi: rho_max * sqrt(max lambda_max(S)) if the layer's S varies, else rho_max;
@@ -41,6 +45,7 @@ class DensityGrids;
 
 inline constexpr double kMergeRange = 0.1;
 inline constexpr double kMargin = 1e-5;
+inline constexpr int kSubdivision = 2;  // lateral cells per voxel side (by default)
 
 struct LayerMajorants {
   int lateral = 1;                // m: cells per tile side
@@ -59,10 +64,11 @@ struct LayerMajorants {
 };
 
 // The majorants of every layer of the grids (as they are when built);
-// lateral_block voxel columns per cell side (a divisor of lateral_voxels; 1: the
-// default, one cell per voxel column; lateral_voxels: one per layer and depth run);
+// lateral_block voxel columns per cell side (a divisor of lateral_voxels; 0: the
+// default, kSubdivision cells per voxel side; 1: one cell per voxel column;
+// lateral_voxels: one per layer and depth run);
 // reach: r of ahead_hi (clamped to [1, lateral - 1]; 0: the cells in a mean free path
 // at the mean of hi and the largest factor(w), rounded).
-std::vector<LayerMajorants> build_majorants(const DensityGrids& grids, int lateral_block = 1, int reach = 0);
+std::vector<LayerMajorants> build_majorants(const DensityGrids& grids, int lateral_block = 0, int reach = 0);
 
 }  // namespace mcref::volume
