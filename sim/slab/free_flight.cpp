@@ -139,15 +139,21 @@ class GridFlight final : public FreeFlight {
   // back in the tile, [0, tile]. The box's far faces are r + 1 (going +) or -r
   // (going -) from the cell's low face; per axis, the distance to it is
   // (far - offset) / velocity, +inf when the velocity is +-0 (r >= 1).
-  Leg fly_boxes(const LayerMajorants& M, Photon& p, double& tau, Rng& rng) {
+  [[gnu::always_inline]] Leg fly_boxes(const LayerMajorants& M, Photon& p, double& tau, Rng& rng) {
     const int m = M.lateral, r = M.reach;
-    const double* ahead = M.ahead_hi.data() + (p.d.x < 0) * M.hi.size() + (p.d.y < 0) * 2 * M.hi.size();
     const double rate = -p.d.z, f = M.factor(p.d), dx = p.d.x * M.inv_cell_size, dy = p.d.y * M.inv_cell_size;
+    // The box's shape: narrow across the major axis when the path over r + 1 cells
+    // along it moves by at most the narrow reach across it (from anywhere in the cell).
+    const double ax = std::fabs(dx), ay = std::fabs(dy), major = std::max(ax, ay), across = std::min(ax, ay) * (r + 1);
+    const int narrow = (across <= M.narrow_reach[1] * major) + (across <= M.narrow_reach[0] * major);  // 0: square
+    const int shape = narrow + 2 * ((ay > ax) & (narrow != 0));
+    const int rx = M.box_reach[shape][0], ry = M.box_reach[shape][1];
+    const double* ahead = M.ahead_hi.data() + (4 * shape + (p.d.x < 0) + 2 * (p.d.y < 0)) * M.hi.size();
     const double inv_dx = 1 / dx, inv_dy = 1 / dy, inv_rate = 1 / rate;
     const bool back_x = std::signbit(dx), back_y = std::signbit(dy), up = rate < 0;
-    const double far_x = back_x ? -r : r + 1, far_y = back_y ? -r : r + 1;
+    const double far_x = back_x ? -rx : rx + 1, far_y = back_y ? -ry : ry + 1;
     // Past a far face: the next box starts in the cell beyond it, on its near face.
-    const int step_x = back_x ? -r - 1 : r + 1, step_y = back_y ? -r - 1 : r + 1;
+    const int step_x = back_x ? -rx - 1 : rx + 1, step_y = back_y ? -ry - 1 : ry + 1;
     const double enter_x = back_x ? 1.0 : 0.0, enter_y = back_y ? 1.0 : 0.0;
     double fx = p.x * M.inv_cell_size, fy = p.y * M.inv_cell_size;
     if (!(fx >= 0 && fx < m)) fx = wrap_periodic(fx, m, 1.0 / m);

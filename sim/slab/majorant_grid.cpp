@@ -85,7 +85,8 @@ double lerp(double a, double b, double t) { return (1 - t) * a + t * b; }
 // [z, z + 1] in depth. In each voxel cell the field is multilinear, so its least
 // and greatest values over the part of the cell clipped to the voxel cell are at
 // that part's corners: the voxels' bilinear interpolant there, on both voxel
-// planes, the corner past the last column read both stored and wrapped.
+// planes, the column past the last one read as stored (column N) and, on the
+// tile's edge itself, wrapped (column 0: a lookup there wraps to x = 0).
 Bounds cell_bounds(LayerReader& read, int n, int m, int ci, int cj, int z, bool s_varies) {
   Bounds c;
   // The voxel cells the cell overlaps along an axis, with the clipped part's
@@ -106,6 +107,7 @@ Bounds cell_bounds(LayerReader& read, int n, int m, int ci, int cj, int z, bool 
             const double v01 = read.density(vi, j1, zz), v11 = read.density(i1, j1, zz);
             for (const double y : ty)
               for (const double x : tx) {
+                if ((i1 != vi + 1 && x < 1) || (j1 != vj + 1 && y < 1)) continue;  // wrapped: read on the tile's edge only
                 const double v = lerp(lerp(v00, v10, x), lerp(v01, v11, x), y);
                 c.lo = std::min(c.lo, v);
                 c.hi = std::max(c.hi, v);
@@ -182,27 +184,36 @@ std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_b
       for (const double h : L.hi) mean_hi += h / static_cast<double>(L.hi.size());
       const double free_path_cells = 1 / (mean_hi * max_factor * L.cell_size);
       const int r = L.reach = std::clamp(reach > 0 ? reach : static_cast<int>(std::lround(std::min(free_path_cells, 1e6))), 1, m - 1);
+      // Box shapes (cells ahead along x, along y): square, then narrower across
+      // the direction's major axis, for flights whose path over r + 1 cells along
+      // it stays in a narrower band (free_flight.cpp).
+      const int narrow[2] = {std::max(1, (r + 3) / 4), std::max(1, (r + 1) / 2)};
+      L.box_reach = {{{r, r}, {r, narrow[1]}, {r, narrow[0]}, {narrow[1], r}, {narrow[0], r}}};
+      L.narrow_reach[0] = narrow[0];
+      L.narrow_reach[1] = narrow[1];
       const std::size_t cells = L.hi.size();
-      L.ahead_hi.resize(4 * cells);
-      std::vector<double> along_x(row);  // max over the r + 1 cells from each cell along x, in one depth row
-      for (int q = 0; q < 4; ++q) {
-        const int sx = q & 1 ? -1 : 1, sy = q & 2 ? -1 : 1;
-        for (std::size_t z = 0; z < L.row_hi.size(); ++z) {
-          const double* hi = L.hi.data() + z * row;
-          for (int cj = 0; cj < m; ++cj)
-            for (int ci = 0; ci < m; ++ci) {
-              double best = 0;
-              for (int b = 0; b <= r; ++b) best = std::max(best, hi[cj * m + (ci + sx * b + m) % m]);
-              along_x[cj * m + ci] = best;
-            }
-          for (int cj = 0; cj < m; ++cj)
-            for (int ci = 0; ci < m; ++ci) {
-              double best = 0;
-              for (int a = 0; a <= r; ++a) best = std::max(best, along_x[((cj + sy * a + m) % m) * m + ci]);
-              L.ahead_hi[q * cells + z * row + cj * m + ci] = best;
-            }
+      L.ahead_hi.resize(4 * L.box_reach.size() * cells);
+      std::vector<double> along_x(row);  // max over the rx + 1 cells from each cell along x, in one depth row
+      for (std::size_t shape = 0; shape < L.box_reach.size(); ++shape)
+        for (int q = 0; q < 4; ++q) {
+          const int rx = L.box_reach[shape][0], ry = L.box_reach[shape][1], sx = q & 1 ? -1 : 1, sy = q & 2 ? -1 : 1;
+          double* ahead = L.ahead_hi.data() + (shape * 4 + q) * cells;
+          for (std::size_t z = 0; z < L.row_hi.size(); ++z) {
+            const double* hi = L.hi.data() + z * row;
+            for (int cj = 0; cj < m; ++cj)
+              for (int ci = 0; ci < m; ++ci) {
+                double best = 0;
+                for (int b = 0; b <= rx; ++b) best = std::max(best, hi[cj * m + (ci + sx * b + m) % m]);
+                along_x[cj * m + ci] = best;
+              }
+            for (int cj = 0; cj < m; ++cj)
+              for (int ci = 0; ci < m; ++ci) {
+                double best = 0;
+                for (int a = 0; a <= ry; ++a) best = std::max(best, along_x[((cj + sy * a + m) % m) * m + ci]);
+                ahead[z * row + cj * m + ci] = best;
+              }
+          }
         }
-      }
     }
     out.push_back(std::move(L));
     top = bottom;

@@ -34,6 +34,7 @@
 //    from the photon's cell, restarting where it leaves the box (free_flight.cpp).
 // hi and lo carry a relative margin of kMargin for the single-precision
 // interpolation of the density voxels.
+#include <array>
 #include <vector>
 
 #include "models/core/vec.h"
@@ -55,7 +56,9 @@ struct LayerMajorants {
   std::vector<double> hi, lo;     // per cell, index (depth_cell * m + j) * m + i
   std::vector<double> row_hi;     // max of hi over each depth row of cells
   int reach = 0;                  // r: lateral cells ahead of the photon's (lateral > 1)
-  std::vector<double> ahead_hi;   // index q * hi.size() + cell: max of hi over the box ahead
+  std::array<std::array<int, 2>, 5> box_reach{};  // per box shape: cells ahead along x, along y
+  int narrow_reach[2] = {0, 0};   // the narrow boxes' reach across the major axis (shapes 2, 4 and 1, 3)
+  std::vector<double> ahead_hi;   // index (shape * 4 + q) * hi.size() + cell: max of hi over the box ahead
   bool one_s = false;             // SGGX layer with one S everywhere (s)
   bool s_varies = false;          // SGGX layer whose S varies: look S up at collisions
   sggx::Sggx s;
