@@ -65,8 +65,9 @@ class HomogeneousFlight final : public FreeFlight {
 //  - a laterally uniform layer: hi(cell) factor(w) in its depth cells, walked
 //    with a DDA in depth (Amanatides & Woo 1987);
 //  - a laterally varying layer: ahead_hi(cell) factor(w), the majorant of the box
-//    of (r + 1)^2 lateral cells from the photon's cell r cells ahead along x and
-//    y (in its depth cell), until a tentative collision or the box's far faces,
+//    of (rx + 1)(ry + 1) lateral cells from the photon's cell rx cells ahead along
+//    x and ry along y (in its depth cell; rx = ry = r, or narrower across the
+//    direction's major axis), until a tentative collision or the box's far faces,
 //    where the photon's cell starts the next box (the rest of the optical depth
 //    carried: the Poisson process of tentative collisions is memoryless).
 //    No DDA: most flights end in their first box.
@@ -136,9 +137,10 @@ class GridFlight final : public FreeFlight {
   // A laterally varying layer: boxes of cells ahead of the photon (above). The
   // photon's lateral position is kept as its cell (ix, iy) in the tile and its
   // offset (fx, fy) in [0, 1] in that cell, in cell units; p.x, p.y are written
-  // back in the tile, [0, tile]. The box's far faces are r + 1 (going +) or -r
-  // (going -) from the cell's low face; per axis, the distance to it is
-  // (far - offset) / velocity, +inf when the velocity is +-0 (r >= 1).
+  // back in the tile, [0, tile]. The box's far faces are rx + 1 (going +) or -rx
+  // (going -) from the cell's low face along x, the same with ry along y; per axis,
+  // the distance to it is (far - offset) / velocity, +inf when the velocity is +-0
+  // (rx, ry >= 1).
   [[gnu::always_inline]] Leg fly_boxes(const LayerMajorants& M, Photon& p, double& tau, Rng& rng) {
     const int m = M.lateral, r = M.reach;
     const double rate = -p.d.z, f = M.factor(p.d), dx = p.d.x * M.inv_cell_size, dy = p.d.y * M.inv_cell_size;

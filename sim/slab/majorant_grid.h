@@ -27,11 +27,15 @@
 //    layer with one S everywhere (exact in direction), else 1;
 //  - lo: rho_min for layers whose S does not vary (0 otherwise): a tentative
 //    collision with u hi < lo is real whatever rho(x) is (no lookup needed);
-//  - ahead_hi (laterally varying layers), per quadrant q of the direction
-//    (q = [w_x < 0] + 2 [w_y < 0]): the max of hi over the (r + 1)^2 lateral
-//    cells from the cell r cells ahead along x and y (r = reach, wrapped around
-//    the tile), in its depth cell: a majorant in that box, which the flights use
-//    from the photon's cell, restarting where it leaves the box (free_flight.cpp).
+//  - ahead_hi (laterally varying layers), per box shape (rx, ry) and quadrant q
+//    of the direction (q = [w_x < 0] + 2 [w_y < 0]): the max of hi over the
+//    (rx + 1)(ry + 1) lateral cells from the cell rx cells ahead along x and ry
+//    along y (wrapped around the tile), in its depth cell: a majorant in that box,
+//    which the flights use from the photon's cell, restarting where it leaves the
+//    box (free_flight.cpp). Shapes: square (r = reach), and r along the direction's
+//    major axis by about r / 4 or r / 2 across it (narrow_reach), for directions
+//    whose path over r + 1 cells stays within that band. Computed separably: the
+//    max along x, then along y.
 // hi and lo carry a relative margin of kMargin for the single-precision
 // interpolation of the density voxels.
 #include <array>
