@@ -11,8 +11,9 @@
 //   min_corners rho <= rho(x) <= max_corners rho (over a sub-box of the voxel
 //   cell: min and max over the sub-box's corners, rho being multilinear),
 //   sigma(w; S(x))^2 = sum_i w_i w^T S_i w <= max_corners lambda_max(S_i).
-// The corner past the last column is read both as stored (column N) and wrapped
-// (column 0): the bounds hold whether or not the grid stores the periodic seam.
+// The column past the last one is read as stored (column N) and, on the tile's
+// edge, where a lookup wraps to x = 0, as column 0: the bounds hold whether or
+// not the grid stores the periodic seam.
 //
 // Cells: laterally kSubdivision^2 per voxel column (m = kSubdivision
 // lateral_voxels; or one per square block of columns, for tests), or one for
