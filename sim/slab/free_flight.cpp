@@ -65,8 +65,9 @@ class HomogeneousFlight final : public FreeFlight {
 //  - a laterally uniform layer: hi(cell) factor(w) in its depth cells, walked
 //    with a DDA in depth (Amanatides & Woo 1987);
 //  - a laterally varying layer: ahead_hi(cell) factor(w), the majorant of the box
-//    of (r + 1)^2 lateral cells from the photon's cell r cells ahead along x and
-//    y (in its depth cell), until a tentative collision or the box's far faces,
+//    of (rx + 1)(ry + 1) lateral cells from the photon's cell rx cells ahead along
+//    x and ry along y (in its depth cell; rx = ry = r, or narrower across the
+//    direction's major axis), until a tentative collision or the box's far faces,
 //    where the photon's cell starts the next box (the rest of the optical depth
 //    carried: the Poisson process of tentative collisions is memoryless).
 //    No DDA: most flights end in their first box.
@@ -95,12 +96,16 @@ class GridFlight final : public FreeFlight {
   double lateral_period() const override { return m_.geometry().grid.tile; }
 
  private:
+  // The depth cell holding a depth (on a face: the cell below it).
+  static int depth_cell(const LayerMajorants& M, double depth) {
+    return static_cast<int>(std::upper_bound(M.faces.begin() + 1, M.faces.end() - 1, depth) - (M.faces.begin() + 1));
+  }
+
   // A laterally uniform layer: the depth cells along the ray; tau is the
   // optical depth left (carried to the next layer if the photon reaches a face).
   Leg fly_depth(const LayerMajorants& M, Photon& p, double& tau, Rng& rng) {
     const double rate = -p.d.z, inv_rate = 1 / rate, f = M.factor(p.d);
-    // The cell holding the photon (on a face: the cell below it).
-    int iz = static_cast<int>(std::upper_bound(M.faces.begin() + 1, M.faces.end() - 1, p.depth) - (M.faces.begin() + 1));
+    int iz = depth_cell(M, p.depth);
     const auto face_t = [&](int cell) {
       return rate > 0 ? (M.faces[cell + 1] - p.depth) * inv_rate : rate < 0 ? (M.faces[cell] - p.depth) * inv_rate : INFINITY;
     };
@@ -132,18 +137,25 @@ class GridFlight final : public FreeFlight {
   // A laterally varying layer: boxes of cells ahead of the photon (above). The
   // photon's lateral position is kept as its cell (ix, iy) in the tile and its
   // offset (fx, fy) in [0, 1] in that cell, in cell units; p.x, p.y are written
-  // back in the tile, [0, tile]. The box's far faces are r + 1 (going +) or -r
-  // (going -) from the cell's low face; per axis, the distance to it is
-  // (far - offset) / velocity, +inf when the velocity is +-0 (r >= 1).
-  Leg fly_boxes(const LayerMajorants& M, Photon& p, double& tau, Rng& rng) {
+  // back in the tile, [0, tile]. The box's far faces are rx + 1 (going +) or -rx
+  // (going -) from the cell's low face along x, the same with ry along y; per axis,
+  // the distance to it is (far - offset) / velocity, +inf when the velocity is +-0
+  // (rx, ry >= 1).
+  [[gnu::always_inline]] Leg fly_boxes(const LayerMajorants& M, Photon& p, double& tau, Rng& rng) {
     const int m = M.lateral, r = M.reach;
-    const double* ahead = M.ahead_hi.data() + (p.d.x < 0) * M.hi.size() + (p.d.y < 0) * 2 * M.hi.size();
     const double rate = -p.d.z, f = M.factor(p.d), dx = p.d.x * M.inv_cell_size, dy = p.d.y * M.inv_cell_size;
+    // The box's shape: narrow across the major axis when the path over r + 1 cells
+    // along it moves by at most the narrow reach across it (from anywhere in the cell).
+    const double ax = std::fabs(dx), ay = std::fabs(dy), major = std::max(ax, ay), across = std::min(ax, ay) * (r + 1);
+    const int narrow = (across <= M.narrow_reach[1] * major) + (across <= M.narrow_reach[0] * major);  // 0: square
+    const int shape = narrow + 2 * ((ay > ax) & (narrow != 0));
+    const int rx = M.box_reach[shape][0], ry = M.box_reach[shape][1];
+    const double* ahead = M.ahead_hi.data() + (4 * shape + (p.d.x < 0) + 2 * (p.d.y < 0)) * M.hi.size();
     const double inv_dx = 1 / dx, inv_dy = 1 / dy, inv_rate = 1 / rate;
     const bool back_x = std::signbit(dx), back_y = std::signbit(dy), up = rate < 0;
-    const double far_x = back_x ? -r : r + 1, far_y = back_y ? -r : r + 1;
+    const double far_x = back_x ? -rx : rx + 1, far_y = back_y ? -ry : ry + 1;
     // Past a far face: the next box starts in the cell beyond it, on its near face.
-    const int step_x = back_x ? -r - 1 : r + 1, step_y = back_y ? -r - 1 : r + 1;
+    const int step_x = back_x ? -rx - 1 : rx + 1, step_y = back_y ? -ry - 1 : ry + 1;
     const double enter_x = back_x ? 1.0 : 0.0, enter_y = back_y ? 1.0 : 0.0;
     double fx = p.x * M.inv_cell_size, fy = p.y * M.inv_cell_size;
     if (!(fx >= 0 && fx < m)) fx = wrap_periodic(fx, m, 1.0 / m);
@@ -151,7 +163,7 @@ class GridFlight final : public FreeFlight {
     int ix = std::min(static_cast<int>(fx), m - 1), iy = std::min(static_cast<int>(fy), m - 1);
     fx -= ix;
     fy -= iy;
-    int iz = static_cast<int>(std::upper_bound(M.faces.begin() + 1, M.faces.end() - 1, p.depth) - (M.faces.begin() + 1));
+    int iz = M.depth_cells() == 1 ? 0 : depth_cell(M, p.depth);
     if (rate == 0 && !(M.row_hi[iz] > 0)) return Leg::kLost;  // horizontal in empty cells (measure zero)
     const auto wrap_cell = [m](int i) { return i >= m ? i - m : i < 0 ? i + m : i; };
     // Moves the photon by s (within its box) and makes its cell the next box's start.

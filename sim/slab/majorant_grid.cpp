@@ -77,6 +77,50 @@ bool laterally_uniform(const openvdb::FloatGrid& grid) {
   return true;
 }
 
+// Linear interpolation, exact at t = 0 and t = 1.
+double lerp(double a, double b, double t) { return (1 - t) * a + t * b; }
+
+// Bounds of the interpolated field over lateral cell (ci, cj) of m per tile side
+// (cell ci spans voxels [ci n / m, (ci + 1) n / m]) and the voxel interval
+// [z, z + 1] in depth. In each voxel cell the field is multilinear, so its least
+// and greatest values over the part of the cell clipped to the voxel cell are at
+// that part's corners: the voxels' bilinear interpolant there, on both voxel
+// planes, the column past the last one read as stored (column N) and, on the
+// tile's edge itself, wrapped (column 0: a lookup there wraps to x = 0).
+Bounds cell_bounds(LayerReader& read, int n, int m, int ci, int cj, int z, bool s_varies) {
+  Bounds c;
+  // The voxel cells the cell overlaps along an axis, with the clipped part's
+  // ends in the voxel cell (units of 1 / m voxel: the cell is [a n, (a + 1) n]).
+  const auto overlap = [n, m](int a, int v, double t[2]) {
+    t[0] = (std::max(a * n, v * m) - v * m) / static_cast<double>(m);
+    t[1] = (std::min((a + 1) * n, (v + 1) * m) - v * m) / static_cast<double>(m);
+  };
+  for (int vj = cj * n / m; vj * m < (cj + 1) * n; ++vj)
+    for (int vi = ci * n / m; vi * m < (ci + 1) * n; ++vi) {
+      double tx[2], ty[2];
+      overlap(ci, vi, tx);
+      overlap(cj, vj, ty);
+      for (int zz = z; zz <= z + 1; ++zz)
+        for (const int j1 : {vj + 1, (vj + 1) % n})
+          for (const int i1 : {vi + 1, (vi + 1) % n}) {
+            const double v00 = read.density(vi, vj, zz), v10 = read.density(i1, vj, zz);
+            const double v01 = read.density(vi, j1, zz), v11 = read.density(i1, j1, zz);
+            for (const double y : ty)
+              for (const double x : tx) {
+                if ((i1 != vi + 1 && x < 1) || (j1 != vj + 1 && y < 1)) continue;  // wrapped: read on the tile's edge only
+                const double v = lerp(lerp(v00, v10, x), lerp(v01, v11, x), y);
+                c.lo = std::min(c.lo, v);
+                c.hi = std::max(c.hi, v);
+              }
+            if (s_varies)
+              for (const int j : {vj, j1})
+                for (const int i : {vi, i1})
+                  c.sigma = std::max(c.sigma, std::sqrt(std::max(0.0, largest_eigenvalue(read.matrix(i, j, zz)))));
+          }
+    }
+  return c;
+}
+
 }  // namespace
 
 std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_block, int reach) {
@@ -97,7 +141,7 @@ std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_b
     }
     // The largest factor(w) (1 if S varies: hi holds sigma then).
     const double max_factor = L.one_s ? std::sqrt(std::max(0.0, largest_eigenvalue(read.matrix(0, 0, 0)))) : 1.0;
-    const int m = laterally_uniform(*g.grids()[k]) ? 1 : n / lateral_block, b = n / m;
+    const int m = laterally_uniform(*g.grids()[k]) ? 1 : lateral_block > 0 ? n / lateral_block : n * kSubdivision;
     L.lateral = m;
     L.cell_size = geo.grid.tile / m;
     L.inv_cell_size = m / geo.grid.tile;
@@ -105,20 +149,8 @@ std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_b
     std::vector<Bounds> fine(static_cast<std::size_t>(nz) * m * m);
     for (int r = 0; r < nz; ++r)
       for (int cj = 0; cj < m; ++cj)
-        for (int ci = 0; ci < m; ++ci) {
-          Bounds& c = fine[(static_cast<std::size_t>(r) * m + cj) * m + ci];
-          for (int z = nz - r - 1; z <= nz - r; ++z)
-            for (int j = cj * b; j <= (cj + 1) * b; ++j)
-              for (int i = ci * b; i <= (ci + 1) * b; ++i)
-                for (const int jj : {j, j % n})
-                  for (const int ii : {i, i % n}) {
-                    const double v = read.density(ii, jj, z);
-                    c.lo = std::min(c.lo, v);
-                    c.hi = std::max(c.hi, v);
-                    if (L.s_varies)
-                      c.sigma = std::max(c.sigma, std::sqrt(std::max(0.0, largest_eigenvalue(read.matrix(ii, jj, z)))));
-                  }
-        }
+        for (int ci = 0; ci < m; ++ci)
+          fine[(static_cast<std::size_t>(r) * m + cj) * m + ci] = cell_bounds(read, n, m, ci, cj, nz - r - 1, L.s_varies);
     // Depth cells: runs of voxel intervals whose bounds stay narrow in every column.
     const std::size_t row = static_cast<std::size_t>(m) * m;
     L.faces.push_back(top);
@@ -152,20 +184,36 @@ std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_b
       for (const double h : L.hi) mean_hi += h / static_cast<double>(L.hi.size());
       const double free_path_cells = 1 / (mean_hi * max_factor * L.cell_size);
       const int r = L.reach = std::clamp(reach > 0 ? reach : static_cast<int>(std::lround(std::min(free_path_cells, 1e6))), 1, m - 1);
+      // Box shapes (cells ahead along x, along y): square, then narrower across
+      // the direction's major axis, for flights whose path over r + 1 cells along
+      // it stays in a narrower band (free_flight.cpp).
+      const int narrow[2] = {std::max(1, (r + 3) / 4), std::max(1, (r + 1) / 2)};
+      L.box_reach = {{{r, r}, {r, narrow[1]}, {r, narrow[0]}, {narrow[1], r}, {narrow[0], r}}};
+      L.narrow_reach[0] = narrow[0];
+      L.narrow_reach[1] = narrow[1];
       const std::size_t cells = L.hi.size();
-      L.ahead_hi.resize(4 * cells);
-      for (int q = 0; q < 4; ++q) {
-        const int sx = q & 1 ? -1 : 1, sy = q & 2 ? -1 : 1;
-        for (std::size_t z = 0; z < L.row_hi.size(); ++z)
-          for (int cj = 0; cj < m; ++cj)
-            for (int ci = 0; ci < m; ++ci) {
-              double best = 0;
-              for (int a = 0; a <= r; ++a)
-                for (int b = 0; b <= r; ++b)
-                  best = std::max(best, L.hi[(z * m + (cj + sy * a + m) % m) * m + (ci + sx * b + m) % m]);
-              L.ahead_hi[q * cells + (z * m + cj) * m + ci] = best;
-            }
-      }
+      L.ahead_hi.resize(4 * L.box_reach.size() * cells);
+      std::vector<double> along_x(row);  // max over the rx + 1 cells from each cell along x, in one depth row
+      for (std::size_t shape = 0; shape < L.box_reach.size(); ++shape)
+        for (int q = 0; q < 4; ++q) {
+          const int rx = L.box_reach[shape][0], ry = L.box_reach[shape][1], sx = q & 1 ? -1 : 1, sy = q & 2 ? -1 : 1;
+          double* ahead = L.ahead_hi.data() + (shape * 4 + q) * cells;
+          for (std::size_t z = 0; z < L.row_hi.size(); ++z) {
+            const double* hi = L.hi.data() + z * row;
+            for (int cj = 0; cj < m; ++cj)
+              for (int ci = 0; ci < m; ++ci) {
+                double best = 0;
+                for (int b = 0; b <= rx; ++b) best = std::max(best, hi[cj * m + (ci + sx * b + m) % m]);
+                along_x[cj * m + ci] = best;
+              }
+            for (int cj = 0; cj < m; ++cj)
+              for (int ci = 0; ci < m; ++ci) {
+                double best = 0;
+                for (int a = 0; a <= ry; ++a) best = std::max(best, along_x[((cj + sy * a + m) % m) * m + ci]);
+                ahead[z * row + cj * m + ci] = best;
+              }
+          }
+        }
     }
     out.push_back(std::move(L));
     top = bottom;

@@ -8,14 +8,19 @@
 // rho (VoxelDensity) and S (GridLookup, BoxSampler) trilinearly from the voxels
 // at the corners of the voxel cell around x: a convex combination of them
 // (to rounding, which kMargin covers), so in a voxel cell
-//   min_corners rho <= rho(x) <= max_corners rho,
+//   min_corners rho <= rho(x) <= max_corners rho (over a sub-box of the voxel
+//   cell: min and max over the sub-box's corners, rho being multilinear),
 //   sigma(w; S(x))^2 = sum_i w_i w^T S_i w <= max_corners lambda_max(S_i).
-// The corner past the last column is read both as stored (column N) and wrapped
-// (column 0): the bounds hold whether or not the grid stores the periodic seam.
+// The column past the last one is read as stored (column N) and, on the tile's
+// edge, where a lookup wraps to x = 0, as column 0: the bounds hold whether or
+// not the grid stores the periodic seam.
 //
-// Cells: laterally one per voxel column (m = lateral_voxels; or square blocks
-// of columns, for tests), or one for the whole tile when the layer's density
-// does not vary laterally (m = 1); in depth,
+// Cells: laterally kSubdivision^2 per voxel column (m = kSubdivision
+// lateral_voxels; or one per square block of columns, for tests), or one for
+// the whole tile when the layer's density does not vary laterally (m = 1). In a
+// voxel cell the reconstruction is multilinear (trilinear), so over a cell's
+// part in one voxel cell its bounds are at that part's corners: the voxels'
+// interpolant there (in double) is what lo and hi bound; in depth,
 // runs of voxel intervals, merged while in every column the run's bounds stay
 // within kMergeRange of each interval's own (a constant profile: one cell). Per cell:
 //  - hi: rho_max * sqrt(max lambda_max(S)) if the layer's S varies, else rho_max;
@@ -23,13 +28,18 @@
 //    layer with one S everywhere (exact in direction), else 1;
 //  - lo: rho_min for layers whose S does not vary (0 otherwise): a tentative
 //    collision with u hi < lo is real whatever rho(x) is (no lookup needed);
-//  - ahead_hi (laterally varying layers), per quadrant q of the direction
-//    (q = [w_x < 0] + 2 [w_y < 0]): the max of hi over the (r + 1)^2 lateral
-//    cells from the cell r cells ahead along x and y (r = reach, wrapped around
-//    the tile), in its depth cell: a majorant in that box, which the flights use
-//    from the photon's cell, restarting where it leaves the box (free_flight.cpp).
+//  - ahead_hi (laterally varying layers), per box shape (rx, ry) and quadrant q
+//    of the direction (q = [w_x < 0] + 2 [w_y < 0]): the max of hi over the
+//    (rx + 1)(ry + 1) lateral cells from the cell rx cells ahead along x and ry
+//    along y (wrapped around the tile), in its depth cell: a majorant in that box,
+//    which the flights use from the photon's cell, restarting where it leaves the
+//    box (free_flight.cpp). Shapes: square (r = reach), and r along the direction's
+//    major axis by about r / 4 or r / 2 across it (narrow_reach), for directions
+//    whose path over r + 1 cells stays within that band. Computed separably: the
+//    max along x, then along y.
 // hi and lo carry a relative margin of kMargin for the single-precision
 // interpolation of the density voxels.
+#include <array>
 #include <vector>
 
 #include "models/core/vec.h"
@@ -41,6 +51,7 @@ class DensityGrids;
 
 inline constexpr double kMergeRange = 0.1;
 inline constexpr double kMargin = 1e-5;
+inline constexpr int kSubdivision = 2;  // lateral cells per voxel side (by default)
 
 struct LayerMajorants {
   int lateral = 1;                // m: cells per tile side
@@ -50,7 +61,9 @@ struct LayerMajorants {
   std::vector<double> hi, lo;     // per cell, index (depth_cell * m + j) * m + i
   std::vector<double> row_hi;     // max of hi over each depth row of cells
   int reach = 0;                  // r: lateral cells ahead of the photon's (lateral > 1)
-  std::vector<double> ahead_hi;   // index q * hi.size() + cell: max of hi over the box ahead
+  std::array<std::array<int, 2>, 5> box_reach{};  // per box shape: cells ahead along x, along y
+  int narrow_reach[2] = {0, 0};   // the narrow boxes' reach across the major axis (shapes 2, 4 and 1, 3)
+  std::vector<double> ahead_hi;   // index (shape * 4 + q) * hi.size() + cell: max of hi over the box ahead
   bool one_s = false;             // SGGX layer with one S everywhere (s)
   bool s_varies = false;          // SGGX layer whose S varies: look S up at collisions
   sggx::Sggx s;
@@ -59,10 +72,11 @@ struct LayerMajorants {
 };
 
 // The majorants of every layer of the grids (as they are when built);
-// lateral_block voxel columns per cell side (a divisor of lateral_voxels; 1: the
-// default, one cell per voxel column; lateral_voxels: one per layer and depth run);
+// lateral_block voxel columns per cell side (a divisor of lateral_voxels; 0: the
+// default, kSubdivision cells per voxel side; 1: one cell per voxel column;
+// lateral_voxels: one per layer and depth run);
 // reach: r of ahead_hi (clamped to [1, lateral - 1]; 0: the cells in a mean free path
 // at the mean of hi and the largest factor(w), rounded).
-std::vector<LayerMajorants> build_majorants(const DensityGrids& grids, int lateral_block = 1, int reach = 0);
+std::vector<LayerMajorants> build_majorants(const DensityGrids& grids, int lateral_block = 0, int reach = 0);
 
 }  // namespace mcref::volume

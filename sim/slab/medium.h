@@ -28,7 +28,7 @@ class SlabMedium {
   // Over given grids of that geometry (e.g. with voxels edited after
   // DensityGrids built them); the majorants are read from the grids' voxels
   // (lateral_block, reach: see build_majorants).
-  SlabMedium(const SlabGeometry& geometry, std::unique_ptr<DensityGrids> grids, int lateral_block = 1, int reach = 0);
+  SlabMedium(const SlabGeometry& geometry, std::unique_ptr<DensityGrids> grids, int lateral_block = 0, int reach = 0);
   ~SlabMedium();
   const SlabGeometry& geometry() const { return geometry_; }
   const std::vector<MediumLayer>& layers() const { return layers_; }
