@@ -6,7 +6,7 @@
 //  slab/pair/<medium> : the homogeneous slab and a heterogeneous OpenVDB slab
 //                     of the same optical thickness, albedo and SGGX parameters,
 //                     run back to back in every iteration (order alternating;
-//                     9 iterations), same seeds:
+//                     9 iterations of 2^18 paths each), same seeds:
 //                       linear  : linear depth profile, multipliers 0.5 (top) to 1.5;
 //                       lateral : density times 1 + 0.5 cos(2 pi x / tile) cos(2 pi y / tile),
 //                                 16 x 16 voxels per tile (the tile's mean is the layer's);
@@ -14,6 +14,13 @@
 //                     homogeneous events per second of wall time, with its min and max;
 //                     cpu_ratio the same per second of the process's CPU time (robust
 //                     to other jobs on the machine). (Events per path: both.)
+//  slab/flight/<medium> : free flights alone, 1 thread: 2^16 photons spread over
+//                     the layer (uniform in the tile and in depth, isotropic
+//                     directions) flown once each to their next collision or out,
+//                     through the homogeneous slab and the slab/pair medium back to
+//                     back (order alternating; 9 iterations), same seeds; counters:
+//                     ns_hom, ns_het per flight and time_ratio = het / hom time,
+//                     median with min and max over the iterations.
 //  slab/floor       : a minimal homogeneous walk written here (one layer, exact
 //                     exponential flights, the same SGGX vNDF sampler, no tally,
 //                     no virtual calls, plain analog absorption by albedo): the floor.
@@ -42,6 +49,7 @@
 #include <cstdio>
 #include <string>
 
+#include "models/core/warp.h"
 #include "models/sggx/sggx_distribution.h"
 #include "sim/experiment/experiment.h"
 #include "sim/micrograin/estimator.h"
@@ -56,6 +64,7 @@ namespace {
 using namespace mcref;
 
 constexpr std::uint64_t kPaths = 1 << 16;
+constexpr std::uint64_t kPairPaths = 1 << 18;  // slab/pair: ~70 ms per side, steadier ratios
 
 Experiment slab(bool openvdb, const std::string& extra_geometry = "", const std::string& extra_layer = "") {
   std::string text = "[geometry]\nkind = \"slab\"\n";
@@ -162,7 +171,7 @@ void pair(benchmark::State& state, std::string kind) {
       const int which = (k + static_cast<int>(it)) % 2;  // 0: homogeneous, 1: heterogeneous
       const auto t0 = clock::now();
       const double c0 = process_cpu_seconds();
-      e[which] = static_cast<double>(engine_paths(which ? *het : homogeneous, dirs, kPaths, it));
+      e[which] = static_cast<double>(engine_paths(which ? *het : homogeneous, dirs, kPairPaths, it));
       cpu[which] = process_cpu_seconds() - c0;
       wall[which] = std::chrono::duration<double>(clock::now() - t0).count();
     }
@@ -170,11 +179,52 @@ void pair(benchmark::State& state, std::string kind) {
     wall_ratios.push_back(e[1] / wall[1] / (e[0] / wall[0]));
     cpu_ratios.push_back(e[1] / cpu[1] / (e[0] / cpu[0]));
   }
-  const double paths = static_cast<double>(kPaths) * static_cast<double>(it);
+  const double paths = static_cast<double>(kPairPaths) * static_cast<double>(it);
   report_spread(state, "ratio", wall_ratios);
   report_spread(state, "cpu_ratio", cpu_ratios);
   state.counters["events/path_hom"] = events[0] / paths;
   state.counters["events/path_het"] = events[1] / paths;
+}
+
+// Free flights alone (no scattering, no tally), 1 thread: 2^16 photons spread
+// uniformly over the tile and the layer's depth with isotropic directions, each
+// flown once to its next collision or out of the slab, through the homogeneous
+// and the heterogeneous medium back to back (order alternating), same seeds.
+void flights(benchmark::State& state, std::string kind) {
+  const volume::SlabMedium homogeneous(slab(false).slab);
+  const std::unique_ptr<volume::SlabMedium> het = heterogeneous(kind);
+  const std::unique_ptr<volume::FreeFlight> fly[2] = {volume::make_flight(homogeneous), volume::make_flight(*het)};
+  std::vector<volume::Photon> start(1 << 16);
+  Rng placement(7);
+  for (volume::Photon& p : start) {
+    p.x = placement.uniform();
+    p.y = placement.uniform();
+    p.depth = placement.uniform();  // the layer: thickness 1
+    p.d = sample_uniform_sphere(placement);
+  }
+  std::vector<double> ns[2], ratios;
+  double sink = 0;
+  std::uint64_t it = 0;
+  for (auto _ : state) {
+    ++it;
+    double t[2];
+    for (int k = 0; k < 2; ++k) {
+      const int which = (k + static_cast<int>(it)) % 2;  // 0: homogeneous, 1: heterogeneous
+      Rng rng(stream_seed({it}));
+      const auto t0 = std::chrono::steady_clock::now();
+      for (volume::Photon p : start) {
+        fly[which]->fly(p, rng);
+        sink += p.depth;
+      }
+      t[which] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+    for (int w = 0; w < 2; ++w) ns[w].push_back(1e9 * t[w] / static_cast<double>(start.size()));
+    ratios.push_back(t[1] / t[0]);
+  }
+  benchmark::DoNotOptimize(sink);
+  report_spread(state, "ns_hom", ns[0]);
+  report_spread(state, "ns_het", ns[1]);
+  report_spread(state, "time_ratio", ratios);
 }
 
 // The floor: one homogeneous layer, nothing but the physics.
@@ -351,6 +401,8 @@ BENCHMARK_CAPTURE(engine, homogeneous, false)->Name("slab/homogeneous")->UseReal
 BENCHMARK_CAPTURE(engine, openvdb, true)->Name("slab/openvdb")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(pair, linear, "linear")->Name("slab/pair/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(pair, lateral, "lateral")->Name("slab/pair/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(flights, linear, "linear")->Name("slab/flight/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(flights, lateral, "lateral")->Name("slab/flight/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(floor_walk)->Name("slab/floor")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(wave, one, 1)->Name("slab/wave")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(wave, two, 2)->Name("slab/wave2")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);

@@ -8,10 +8,12 @@
 // are random, the stored periodic seam column included, and so is S in one
 // layer. Also: the dense copy agrees with OpenVDB's sampler; bit-identical
 // tables for 1 and 2 threads on the grid path, and walk sums on the lateral
-// path; lateral flights (boxes of cells ahead of the photon) that agree with
-// flights against one cell per layer.
+// path; the boxes' majorants (ahead_hi) against brute force; lateral flights
+// (boxes of cells ahead of the photon) that agree with flights against one
+// cell per layer.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <sstream>
@@ -260,6 +262,58 @@ TEST(SlabMajorants, BoundTheExtinctionInEveryCell) {
     EXPECT_EQ(over, 0u) << first.str();
     EXPECT_EQ(under, 0u) << first.str();
   }
+}
+
+// The box majorants the lateral flights read (ahead_hi) are, for every box
+// shape, quadrant and cell, the max of hi over exactly the box the flight uses:
+// the cell and the rx cells ahead of it along x and ry along y, in the
+// quadrant's directions, wrapped around the tile (brute force, cell by cell).
+// On the random layer and the cosine layer, cells of half a column and of one.
+TEST(SlabMajorants, BoxMajorantsAreTheMaxOverTheirBoxes) {
+  const Experiment random = parse_experiment(kGeometry, "m.toml");
+  const Experiment lateral = parse_experiment(kLateral, "lateral.toml");
+  std::size_t boxes = 0, uneven = 0;
+  for (const int block : {0, 1}) {
+    Rng rng(2025);
+    const volume::SlabMedium stack(random.slab, random_grids(random.slab, rng), block);
+    const auto cosine = cosine_lateral_medium(lateral.slab, block, 0);
+    for (const volume::LayerMajorants* M : {&stack.majorants()[2], &cosine->majorants()[0]}) {
+      const int m = M->lateral, r = M->reach;
+      ASSERT_GT(m, 1);
+      ASSERT_GE(r, 1);
+      // The square, then long along x, then long along y, each narrower across.
+      EXPECT_EQ(M->box_reach[0], (std::array<int, 2>{r, r}));
+      for (int shape = 1; shape < 5; ++shape) {
+        const int along = shape < 3 ? 0 : 1;
+        EXPECT_EQ(M->box_reach[shape][along], r);
+        EXPECT_LE(M->box_reach[shape][1 - along], r);
+      }
+      const std::size_t cells = M->hi.size();
+      ASSERT_EQ(M->ahead_hi.size(), 20 * cells);
+      for (int shape = 0; shape < 5; ++shape)
+        for (int q = 0; q < 4; ++q) {
+          const int rx = M->box_reach[shape][0], ry = M->box_reach[shape][1];
+          const int sx = q & 1 ? -1 : 1, sy = q & 2 ? -1 : 1;  // q = [w_x < 0] + 2 [w_y < 0]
+          for (int cz = 0; cz < M->depth_cells(); ++cz)
+            for (int cj = 0; cj < m; ++cj)
+              for (int ci = 0; ci < m; ++ci, ++boxes) {
+                double best = 0;
+                for (int a = 0; a <= ry; ++a)
+                  for (int b = 0; b <= rx; ++b) {
+                    const int i = ((ci + sx * b) % m + m) % m, j = ((cj + sy * a) % m + m) % m;
+                    best = std::max(best, M->hi[(static_cast<std::size_t>(cz) * m + j) * m + i]);
+                  }
+                const std::size_t cell = (static_cast<std::size_t>(cz) * m + cj) * m + ci;
+                const double ahead = M->ahead_hi[(static_cast<std::size_t>(shape) * 4 + q) * cells + cell];
+                ASSERT_EQ(ahead, best) << "shape " << shape << " (" << rx << ", " << ry << ") quadrant " << q
+                                       << " cell " << ci << ", " << cj << ", " << cz;
+                uneven += ahead > M->hi[cell];
+              }
+        }
+    }
+  }
+  EXPECT_GT(boxes, 20000u);
+  EXPECT_GT(uneven, boxes / 2) << "boxes whose max is their own cell's test little";
 }
 
 // The dense copy of the density voxels the flights read (VoxelDensity) agrees
