@@ -1,0 +1,92 @@
+// validate/model_evaluation: ModelAccuracy (how an adaptive rule's integrals
+// met their target) merges in any order to the same result, reaches the
+// calling thread's scope, and the micrograin BRDF and albedo evaluators report
+// one integral per brdf cell (all channels) and per albedo direction, the same
+// on any number of threads.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "sim/experiment/experiment.h"
+#include "sim/tally/brdf_tally.h"
+#include "validate/model_evaluation.h"
+
+using namespace mcref;
+
+TEST(ModelAccuracy, MergeIsOrderIndependent) {
+  ModelAccuracy a, b;
+  a.add(7, 2e-7, true, 5e-7);
+  a.add(3, 4e-6, false, 5e-7);
+  b.add(1, 4e-6, false, 5e-7);  // ties with cell 3: the lower cell is the worst
+  b.add(9, 1e-7, true, 5e-7);
+  ModelAccuracy ab = a, ba = b;
+  ab.merge(b);
+  ba.merge(a);
+  for (const ModelAccuracy& m : {ab, ba}) {
+    EXPECT_EQ(m.integrals, 4u);
+    EXPECT_EQ(m.unconverged, 2u);
+    EXPECT_EQ(m.worst_error, 4e-6);
+    EXPECT_EQ(m.worst_cell, 1u);
+    EXPECT_EQ(m.target, 5e-7);
+  }
+  ModelAccuracy empty;
+  empty.merge(ModelAccuracy{});
+  EXPECT_EQ(empty.integrals, 0u);
+}
+
+TEST(ModelAccuracy, ReachesTheInnermostScopeOnly) {
+  ModelAccuracy outer, inner, one;
+  one.add(0, 1e-3, false, 5e-7);
+  {
+    const ModelAccuracyScope a(&outer);
+    {
+      const ModelAccuracyScope b(&inner);
+      report_model_accuracy(one);
+    }
+    report_model_accuracy(one);
+    report_model_accuracy(one);
+  }
+  report_model_accuracy(one);  // no scope: nothing happens
+  EXPECT_EQ(inner.integrals, 1u);
+  EXPECT_EQ(outer.integrals, 2u);
+}
+
+TEST(ModelAccuracy, MicrograinEvaluatorsReportEveryIntegralOnAnyThreadCount) {
+  const Experiment ex = parse_experiment(
+      "[geometry]\nkind = \"micrograin\"\ntau0 = 0.5\nbeta = 1.0\ntile = 20\n"
+      "[material.grain]\ntype = \"lambertian\"\n[material.base]\ntype = \"lambertian\"\n"
+      "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [0, 40]\nsamples = 10\n",
+      "accuracy.toml");
+  BrdfLayout l;
+  l.order1_classes = {"grain", "base"};
+  l.theta_o_bins = 3;
+  l.phi_bins = 2;
+  std::vector<ModelAccuracy> first;
+  for (const int threads : {1, 2}) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    std::size_t k = 0;
+    for (const Table& t : make_brdf_tables("brdf", {0.0, 0.7}, {0.0}, l)) {
+      if (t.name != "brdf_order1_grain" && t.name != "brdf_albedo") continue;
+      const bool albedo = t.quantity == "albedo";
+      ModelAccuracy a;
+      {
+        const ModelAccuracyScope scope(&a);
+        evaluate_model(albedo ? "gdist_albedo" : "gdist_grain_union", t, ex);
+      }
+      // brdf: a cell's 3 channels; albedo: a direction's components and channels.
+      const std::size_t per_integral = albedo ? t.axes[2].size() * t.axes[3].size() : 3;
+      EXPECT_EQ(a.integrals, t.cells() / per_integral) << t.name;
+      EXPECT_EQ(a.unconverged, 0u) << t.name;
+      EXPECT_GT(a.worst_error, 0) << t.name;
+      EXPECT_LE(a.worst_error, a.target) << t.name;
+      if (threads == 1) {
+        first.push_back(a);
+      } else {
+        ASSERT_LT(k, first.size());
+        EXPECT_EQ(a.worst_error, first[k].worst_error) << t.name;
+        EXPECT_EQ(a.worst_cell, first[k].worst_cell) << t.name;
+      }
+      ++k;
+    }
+    EXPECT_EQ(k, 2u);
+  }
+}
