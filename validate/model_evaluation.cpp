@@ -1,5 +1,6 @@
 #include "validate/model_evaluation.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace mcref {
@@ -12,6 +13,7 @@ const std::vector<const ModelFamily*>& families() {
   return f;
 }
 thread_local CellsDone current_sink;
+thread_local ModelAccuracy* current_accuracy = nullptr;
 
 // The family of a model, and its info (nullptr if unknown).
 const ModelFamily* family_of(const std::string& model, const ModelInfo** info) {
@@ -34,6 +36,35 @@ CellProgressScope::~CellProgressScope() { current_sink = std::move(previous_); }
 CellsDone cell_progress() {
   if (current_sink) return current_sink;
   return [](std::size_t) {};
+}
+
+void ModelAccuracy::add(std::size_t cell, double rel_error, bool converged, double rule_target) {
+  ModelAccuracy one;
+  one.target = rule_target;
+  one.integrals = 1;
+  one.unconverged = converged ? 0 : 1;
+  one.worst_error = rel_error;
+  one.worst_cell = cell;
+  merge(one);
+}
+
+void ModelAccuracy::merge(const ModelAccuracy& o) {
+  if (o.integrals == 0) return;
+  // The worst integral, the lowest cell among equals: the same in any order.
+  if (integrals == 0 || o.worst_error > worst_error || (o.worst_error == worst_error && o.worst_cell < worst_cell)) {
+    worst_error = o.worst_error;
+    worst_cell = o.worst_cell;
+  }
+  target = std::fmax(target, o.target);
+  integrals += o.integrals;
+  unconverged += o.unconverged;
+}
+
+ModelAccuracyScope::ModelAccuracyScope(ModelAccuracy* sink) : previous_(current_accuracy) { current_accuracy = sink; }
+ModelAccuracyScope::~ModelAccuracyScope() { current_accuracy = previous_; }
+
+void report_model_accuracy(const ModelAccuracy& a) {
+  if (current_accuracy) current_accuracy->merge(a);
 }
 
 void for_each_cell(const Table& t, const std::function<void(std::size_t, const std::vector<std::size_t>&)>& fn) {

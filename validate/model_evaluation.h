@@ -65,6 +65,37 @@ class CellProgressScope {
 // The calling thread's sink (a no-op if none is set).
 CellsDone cell_progress();
 
+// Accuracy of a model evaluation by an adaptive rule that stops at a limit of
+// refinements (the micrograin_brdf cell rule, validate/micrograin/brdf_cell_rule.h):
+// over its integrals (a brdf cell, all channels; an albedo's hemisphere), how
+// many stopped above the rule's relative target, and the largest relative error
+// estimate reached. Order-independent, so it is the same for any thread count.
+// Families with fixed rules report nothing (integrals = 0).
+struct ModelAccuracy {
+  double target = 0;            // the rule's relative error target
+  std::size_t integrals = 0;    // integrals evaluated
+  std::size_t unconverged = 0;  // of them, stopped at the limit above the target
+  double worst_error = 0;       // largest relative error estimate reached
+  std::size_t worst_cell = 0;   // flat index of the first table cell of that integral
+  void add(std::size_t cell, double rel_error, bool converged, double rule_target);
+  void merge(const ModelAccuracy& other);
+};
+// Where evaluations on the calling thread report their accuracy: set by the
+// caller (like CellProgressScope); an evaluator reports once, on the calling
+// thread, after its parallel loops (report_model_accuracy: merged into the
+// scope's ModelAccuracy; a no-op if none is set).
+class ModelAccuracyScope {
+ public:
+  explicit ModelAccuracyScope(ModelAccuracy* sink);
+  ~ModelAccuracyScope();
+  ModelAccuracyScope(const ModelAccuracyScope&) = delete;
+  ModelAccuracyScope& operator=(const ModelAccuracyScope&) = delete;
+
+ private:
+  ModelAccuracy* previous_;
+};
+void report_model_accuracy(const ModelAccuracy& a);
+
 // Calls fn(flat index, multi-index) for every cell of a table, row-major.
 void for_each_cell(const Table& t, const std::function<void(std::size_t, const std::vector<std::size_t>&)>& fn);
 // Index of the axis called `name` (std::invalid_argument if none).

@@ -61,8 +61,13 @@ std::string results_json(const Suite& suite, const std::vector<CaseResult>& resu
         << ", \"status\": " << json_string(r.verdict.status) << ", \"reason\": " << json_string(r.verdict.reason)
         << ", \"cells\": " << m.cells << ", \"chi2_per_dof\": " << json_number(m.chi2_per_dof())
         << ", \"p_value\": " << json_number(m.p_value) << ", \"max_abs_z\": " << json_number(m.max_abs_z)
-        << ", \"max_rel_error\": " << json_number(m.max_rel_error) << ", \"rms_rel_error\": " << json_number(m.rms_rel_error)
-        << ",\n        \"model_values\": [";
+        << ", \"max_rel_error\": " << json_number(m.max_rel_error) << ", \"rms_rel_error\": " << json_number(m.rms_rel_error);
+      const ModelAccuracy& a = r.accuracy;
+      if (a.integrals > 0)
+        j << ",\n        \"rule_accuracy\": {\"target\": " << json_number(a.target) << ", \"integrals\": " << a.integrals
+          << ", \"unconverged\": " << a.unconverged << ", \"worst_rel_error\": " << json_number(a.worst_error)
+          << ", \"worst_cell\": " << a.worst_cell << "}";
+      j << ",\n        \"model_values\": [";
       for (std::size_t v = 0; v < r.model_values.size(); ++v) j << (v ? ", " : "") << json_number(r.model_values[v]);
       j << "]}" << (i + 1 < c.checks.size() ? "," : "") << "\n";
     }

@@ -8,6 +8,7 @@
 
 #include "sim/hdf5/table_file.h"
 #include "validate/metrics.h"
+#include "validate/model_evaluation.h"
 
 namespace mcref {
 
@@ -19,6 +20,7 @@ struct CheckResult {
   bool exact = false;
   double tolerance = 0;
   std::vector<double> model_values;
+  ModelAccuracy accuracy;  // of an adaptive rule (integrals = 0: none reported)
   Comparison comparison;
   Verdict verdict;
 };

@@ -275,13 +275,58 @@ CheckResult run_check(const Check& chk, const Table& t, const Experiment& ex, co
   r.exact = info->exact;
   r.model_description = info->description;
   r.tolerance = chk.tolerance;
-  r.model_values = evaluate_model(chk.model, t, ex);
+  {
+    const ModelAccuracyScope scope(&r.accuracy);
+    r.model_values = evaluate_model(chk.model, t, ex);
+  }
   exclude_duplicate_channels(t, r.model_values);
   const std::vector<double> model_se = evaluate_model_stderr(chk.model, t, ex, r.model_values);
   const std::size_t channels = !t.axes.empty() && t.axes.back().name == "channel" ? t.axes.back().size() : 1;
   r.comparison = compare(t.values(), t.stderrs(), r.model_values, t.batches, model_se, channels);
   r.verdict = judge(r.comparison, info->exact, suite.significance, chk.tolerance);
   return r;
+}
+
+// A table cell's position, e.g. "theta_i 0.5236, phi_i 0, theta_o [1.48, 1.571]"
+// (the channel and component axes left out: a model's integral spans them).
+std::string describe_cell(const Table& t, std::size_t flat) {
+  std::string out;
+  for (std::size_t d = t.axes.size(); d-- > 0;) {
+    const Axis& a = t.axes[d];
+    const std::size_t i = flat % a.size();
+    flat /= a.size();
+    if (a.name == "channel" || a.name == "component") continue;
+    char b[96];
+    if (a.kind == Axis::Kind::Bins)
+      std::snprintf(b, sizeof b, "%s [%.4g, %.4g]", a.name.c_str(), a.lower(i), a.upper(i));
+    else
+      std::snprintf(b, sizeof b, "%s %.4g", a.name.c_str(), a.values[i]);
+    out = b + (out.empty() ? "" : ", " + out);
+  }
+  return out;
+}
+
+// One line for a case whose model integrals stopped above their error target
+// (ModelAccuracy), naming the worst; "" if there are none.
+std::string accuracy_warning(const std::string& label, const std::vector<CheckResult>& checks, const TableFile& f) {
+  std::size_t cells = 0, affected = 0;
+  const CheckResult* worst = nullptr;
+  for (const CheckResult& r : checks) {
+    if (r.accuracy.unconverged == 0) continue;
+    cells += r.accuracy.unconverged;
+    ++affected;
+    if (!worst || r.accuracy.worst_error > worst->accuracy.worst_error) worst = &r;
+  }
+  if (!worst) return "";
+  const ModelAccuracy& a = worst->accuracy;
+  char b[160];
+  std::snprintf(b, sizeof b, "%zu integral%s of %zu check%s stopped at the rule's limit above the %.3g relative target",
+                cells, cells == 1 ? "" : "s", affected, affected == 1 ? "" : "s", a.target);
+  char e[32];
+  std::snprintf(e, sizeof e, "%.3g", a.worst_error);
+  return "warning: " + label + ": " + b + "; worst: " + worst->model + " on " + worst->table + ", cell " +
+         describe_cell(*f.find(worst->table), a.worst_cell) + ", relative error " + e +
+         " (results.json: rule_accuracy)\n";
 }
 
 }  // namespace
@@ -369,6 +414,7 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
       count(table.cells());
     });
     progress.finish();
+    if (!o.quiet) std::fputs(accuracy_warning("case " + c.name, cr.checks, f).c_str(), stderr);
     for (const CheckResult& r : cr.checks) failures += r.verdict.status == "FAIL";
     cr.budget = error_budgets(f, cr.checks);
     results.push_back(std::move(cr));

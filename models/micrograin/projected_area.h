@@ -29,7 +29,13 @@ double cap_cross_section(double h);
 // psi_k (1 - h^2) in shadow_set.h's terms, evaluated with atan2 instead of acos: the acos form lost up to 8e-9 (absolute)
 // where h -> sin theta_i (2 % at theta_i = 89.99 deg, 1 - h / sin theta_i = 1e-7).
 double cap_shadow_area(double theta_i, double h);
-// Same from a unit-space direction i_unit (i_unit.z > 0), more accurate near grazing.
+// Same from a unit-space direction i_unit (i_unit.z > 0). Both are accurate to
+// ~1e-13 relative for their inputs up to theta_i = pi/2 - 1e-9
+// (tests/models/test_micrograin_projected_area.cpp); theta_i's takes cos theta_i
+// of its argument, so near grazing it inherits the argument's rounding:
+// pi/2 - delta in double is off by up to 1e-16, i.e. ~1e-16 / delta relative in
+// cos theta_i and in sigma_s. Where the direction's z is known, use i_unit, as
+// models/micrograin does.
 double cap_shadow_area(Vec3 i_unit, double h);
 
 // vNDF Eq. 5: sigma(i, h) = sigma(n, h) + sigma_s(i, h).

@@ -2,6 +2,7 @@
 // height-dependent filling factor tau(i, h) (Eq. 4/10) and G_dist (Eq. 3/9).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "models/micrograin/height_masking.h"
@@ -116,5 +117,35 @@ TEST(MicrograinProjectedArea, ShadowAccurateWhereTheArcVanishes) {
       const Vec3 d = spherical_direction(th, 0.3);
       const double ref = test::union_area_adaptive(d, d, h, 1e-14, 4096);
       EXPECT_NEAR(cap_shadow_area(d, h), ref, 1e-9 * std::fabs(ref) + 1e-15) << th_deg << " deg, k " << k;
+    }
+}
+
+// Near grazing (theta = pi/2 - delta, delta = 1e-3 ... 1e-9; the area grows as
+// 1 / cos theta): both overloads against LilTracer's form (projected_area.h)
+// evaluated in long double (64-bit mantissa) at the same double inputs, 1e-12
+// relative. theta's overload takes cos theta of its (double) argument, exact to an
+// ulp; what it cannot know is the rounding of pi/2 - delta to a double, up to 1e-16
+// absolute, i.e. ~1e-16 / delta relative in cos theta: callers with the direction's
+// z use the Vec3 overload (all of models/micrograin does).
+TEST(MicrograinProjectedArea, ShadowAccurateNearGrazing) {
+  auto reference = [](long double s, long double c, long double h) {
+    // (s, c) normalised, as ShadowSet does: near h = sin theta the area is
+    // ill-conditioned in s^2 + c^2 - 1 (1e-16 of it moves it by 1e-11 at h = 0.999).
+    const long double n = std::sqrt(s * s + c * c);
+    s /= n;
+    c /= n;
+    const long double sm = std::sqrt(1 - h * h), cos_phiq = -h * c / (s * sm);
+    const long double qx = sm * cos_phiq, qy = sm * std::sqrt(1 - cos_phiq * cos_phiq), ex = h * s / c;
+    const long double sigma_e = std::acos(std::clamp(-(qx - ex) * c, 0.0L, 1.0L)) / c;
+    return sigma_e - std::fabs(ex * qy) - (kPi - std::acos(cos_phiq)) * sm * sm;
+  };
+  for (int k = 3; k <= 9; ++k)
+    for (double h : {0.0, 0.3, 0.9, 0.999}) {
+      const double th = kPi / 2 - std::pow(10.0, -k);
+      const Vec3 d = spherical_direction(th, 0);
+      const long double ref_theta = reference(std::sin(static_cast<long double>(th)), std::cos(static_cast<long double>(th)), h);
+      const long double ref_d = reference(d.x, d.z, h);
+      EXPECT_NEAR(cap_shadow_area(th, h) / ref_theta, 1.0, 1e-12) << "theta = pi/2 - 1e-" << k << ", h " << h;
+      EXPECT_NEAR(cap_shadow_area(d, h) / ref_d, 1.0, 1e-12) << "theta = pi/2 - 1e-" << k << ", h " << h;
     }
 }

@@ -18,8 +18,11 @@
 //   its error estimate; the same end treatment takes a kink at theta_i at its other
 //   end) times 4-point Gauss-Legendre in phi.
 // While the summed estimates exceed the cell's tolerance, the worst piece is refined
-// (global adaptivity). The nodes depend only on the cell and theta_i until a check
-// fails, so models of one table share most of them (geometry_memo.h).
+// (global adaptivity), at most max_splits times: the result says whether it met
+// the tolerance and the error it reached (validate reports the cells that did not:
+// ModelAccuracy, model_evaluation.h). The nodes depend only on the cell and
+// theta_i until a check fails, so models of one table share most of them
+// (geometry_memo.h).
 // Verified against independent references (tests/validate/micrograin/test_brdf_cell_average.cpp).
 #include <algorithm>
 #include <array>
@@ -56,6 +59,17 @@ struct CellRuleTolerance {
   double rel;
   double abs;  // on ∫∫ g, i.e. sr^-1 times the cell's ∫∫ cos sin dtheta dphi
   int max_splits = 200;
+};
+
+// The rule's estimate, its error bounds (summed over the pieces) and whether
+// they met the tolerance before the split limit.
+template <int N>
+struct CellRuleResult {
+  std::array<double, N> value, error;
+  // max over components of error / max(scale, abs / rel), scale = the sum of the
+  // pieces' |estimates| at the start: on the scale of tol.rel, <= it iff converged.
+  double rel_error;
+  bool converged;
 };
 
 namespace detail {
@@ -146,21 +160,27 @@ void product_rules(const G& g, Piece<N>& pc) {
 // the piece with the largest bound (relative to tol) is refined: a Gauss-Legendre
 // piece split in four; an edge piece raised one tanh-sinh level when its theta
 // rule dominates its bound (at most kEdgeLevels), else halved in phi.
+// Returns the sums and, in rel_error, max over components of err / tol (the caller scales it).
 template <int N, class G>
-std::array<double, N> refine(const G& g, std::vector<Piece<N>> pieces, const std::array<double, N>& tol,
-                             int max_splits) {
+CellRuleResult<N> refine(const G& g, std::vector<Piece<N>> pieces, const std::array<double, N>& tol, int max_splits) {
   auto excess = [&](const Piece<N>& pc) {
     double e = 0;
     for (int k = 0; k < N; ++k) e = std::fmax(e, pc.err[k] / tol[k]);
     return e;
   };
-  for (int split = 0; split < max_splits; ++split) {
+  for (int split = 0;; ++split) {
     std::array<double, N> err{};
     for (const Piece<N>& pc : pieces)
       for (int k = 0; k < N; ++k) err[k] += pc.err[k];
     bool ok = true;
     for (int k = 0; k < N; ++k) ok = ok && err[k] <= tol[k];
-    if (ok) break;
+    if (ok || split == max_splits) {
+      CellRuleResult<N> r{{}, err, 0, ok};
+      for (int k = 0; k < N; ++k) r.rel_error = std::fmax(r.rel_error, err[k] / tol[k]);
+      for (const Piece<N>& pc : pieces)
+        for (int k = 0; k < N; ++k) r.value[k] += pc.q[k];
+      return r;
+    }
     std::size_t worst = 0;
     for (std::size_t j = 1; j < pieces.size(); ++j)
       if (excess(pieces[j]) > excess(pieces[worst])) worst = j;
@@ -184,10 +204,6 @@ std::array<double, N> refine(const G& g, std::vector<Piece<N>> pieces, const std
       pieces.push_back(c);
     }
   }
-  std::array<double, N> sum{};
-  for (const Piece<N>& pc : pieces)
-    for (int k = 0; k < N; ++k) sum[k] += pc.q[k];
-  return sum;
 }
 
 }  // namespace detail
@@ -196,8 +212,8 @@ std::array<double, N> refine(const G& g, std::vector<Piece<N>> pieces, const std
 // N components, each to tol.rel of its value or tol.abs; theta_parts x phi_parts
 // equal pieces to start with (a hemisphere: a few; a table's cell: 1 x 1).
 template <int N, class G>
-std::array<double, N> cell_rule(const G& g, double theta_i, double t0, double t1, double p0, double p1,
-                                const CellRuleTolerance& tol, int theta_parts = 1, int phi_parts = 1) {
+CellRuleResult<N> cell_rule(const G& g, double theta_i, double t0, double t1, double p0, double p1,
+                            const CellRuleTolerance& tol, int theta_parts = 1, int phi_parts = 1) {
   const std::vector<GradedInterval> ts = graded_pieces(t0, t1, {theta_i}, theta_parts);
   std::vector<detail::Piece<N>> pieces;
   std::array<double, N> scale{};
@@ -217,7 +233,9 @@ std::array<double, N> cell_rule(const G& g, double theta_i, double t0, double t1
   }
   std::array<double, N> t;
   for (int k = 0; k < N; ++k) t[k] = std::fmax(tol.rel * scale[k], tol.abs);
-  return detail::refine<N>(g, std::move(pieces), t, tol.max_splits);
+  CellRuleResult<N> r = detail::refine<N>(g, std::move(pieces), t, tol.max_splits);
+  r.rel_error *= tol.rel;  // err / t = (err / max(scale, abs / rel)) / rel
+  return r;
 }
 
 }  // namespace mcref

@@ -181,6 +181,14 @@ CellRuleTolerance cell_tolerance(double t0, double t1, double p0, double p1) {
   return {0.5 * kCellRelTolerance, 1e-12 * cos_sin};
 }
 
+// The cell rule's accuracy over a table (one entry per task), to the caller's
+// ModelAccuracyScope: on the calling thread, after the parallel loop.
+void report_accuracy(const std::vector<ModelAccuracy>& per_task) {
+  ModelAccuracy all;
+  for (const ModelAccuracy& a : per_task) all.merge(a);
+  report_model_accuracy(all);
+}
+
 // g = f cos theta_o sin theta_o of parts[p] in components 3p..3p+2, phi relative to phi_i.
 template <int N>
 auto cosine_weighted(const std::array<Spec, N / 3>& parts, const mg::GrainField& f, const MicrograinMaterials& mat,
@@ -200,8 +208,9 @@ std::vector<double> evaluate_brdf(const Spec& s, const Table& t, const Experimen
   const Axis &ti = t.axes[0], &pi = t.axes[1], &to = t.axes[2], &ph = t.axes[3];
   const std::array<Spec, 1> parts{s};
   const CellsDone done = cell_progress();  // read here: the tasks below run on other threads
+  std::vector<ModelAccuracy> accuracy(ti.size() * pi.size() * to.size());
   // One task per (theta_i, phi_i, theta_o) row of cells; each writes only its own cells.
-  tbb::parallel_for(std::size_t{0}, ti.size() * pi.size() * to.size(), [&](std::size_t row) {
+  tbb::parallel_for(std::size_t{0}, accuracy.size(), [&](std::size_t row) {
     const std::size_t a = row / (pi.size() * to.size()), b = row / to.size() % pi.size(), c = row % to.size();
     const Vec3 wi = spherical_direction(ti.values[a], pi.values[b]);
     const auto g = cosine_weighted<3>(parts, f, ex.materials, wi, pi.values[b]);
@@ -209,11 +218,14 @@ std::vector<double> evaluate_brdf(const Spec& s, const Table& t, const Experimen
     for (std::size_t d = 0; d < ph.size(); ++d) {
       const double p0 = ph.lower(d), p1 = ph.upper(d);
       const double den = 0.5 * (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0)) * (p1 - p0);  // ∫∫ cos sin
-      const std::array<double, 3> num = cell_rule<3>(g, ti.values[a], t0, t1, p0, p1, cell_tolerance(t0, t1, p0, p1));
-      for (std::size_t k = 0; k < 3; ++k) out[t.index({a, b, c, d, k})] = num[k] / den;
+      const CellRuleTolerance tol = cell_tolerance(t0, t1, p0, p1);
+      const CellRuleResult<3> num = cell_rule<3>(g, ti.values[a], t0, t1, p0, p1, tol);
+      for (std::size_t k = 0; k < 3; ++k) out[t.index({a, b, c, d, k})] = num.value[k] / den;
+      accuracy[row].add(t.index({a, b, c, d, 0}), num.rel_error, num.converged, tol.rel);
     }
     done(ph.size() * 3);
   });
+  report_accuracy(accuracy);
   return out;
 }
 
@@ -224,8 +236,9 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
   const std::size_t total = t.axes[2].size() - 1, grain_component = 0, base = 1;  // order1_grain, order1_base
   const CellsDone done = cell_progress();
   const std::size_t cells_per_direction = t.cells() / (ti.size() * pi.size());
+  std::vector<ModelAccuracy> accuracy(ti.size() * pi.size());
   // One task per incident direction; each writes only its own cells.
-  tbb::parallel_for(std::size_t{0}, ti.size() * pi.size(), [&](std::size_t dir) {
+  tbb::parallel_for(std::size_t{0}, accuracy.size(), [&](std::size_t dir) {
     const std::size_t a = dir / pi.size(), b = dir % pi.size();
     const Vec3 wi = spherical_direction(ti.values[a], pi.values[b]);
     double delta[3];
@@ -245,18 +258,20 @@ std::vector<double> evaluate_albedo(const Spec& s, const Table& t, const Experim
     const double span = ex.isotropic ? kPi : 2 * kPi;
     const std::array<Spec, 2> parts{Spec{Spec::Part::Grain, s.form, s.lambda, false, s.masking, s.g2},
                                     Spec{Spec::Part::Base, s.form, s.lambda, false, s.masking, s.g2}};
-    const std::array<double, 6> energy =
-        cell_rule<6>(cosine_weighted<6>(parts, f, ex.materials, wi, pi.values[b]), ti.values[a], 0.0, kPi / 2, 0.0,
-                     span, cell_tolerance(0.0, kPi / 2, 0.0, span), 4, 4);
+    const CellRuleTolerance tol = cell_tolerance(0.0, kPi / 2, 0.0, span);
+    const CellRuleResult<6> energy = cell_rule<6>(cosine_weighted<6>(parts, f, ex.materials, wi, pi.values[b]),
+                                                  ti.values[a], 0.0, kPi / 2, 0.0, span, tol, 4, 4);
     const double fold = ex.isotropic ? 2 : 1;
     for (std::size_t k = 0; k < 3; ++k) {
-      const double grain_energy = fold * energy[k], base_energy = fold * energy[3 + k] + delta[k];
+      const double grain_energy = fold * energy.value[k], base_energy = fold * energy.value[3 + k] + delta[k];
       out[t.index({a, b, grain_component, k})] = grain_energy;
       out[t.index({a, b, base, k})] = base_energy;
       out[t.index({a, b, total, k})] = grain_energy + base_energy;
     }
+    accuracy[dir].add(t.index({a, b, 0, 0}), energy.rel_error, energy.converged, tol.rel);
     done(cells_per_direction);
   });
+  report_accuracy(accuracy);
   return out;
 }
 
