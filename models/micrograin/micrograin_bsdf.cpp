@@ -8,7 +8,7 @@
 #include "models/core/graded_quadrature.h"
 #include "models/core/quadrature.h"
 #include "models/microfacet/fresnel.h"
-#include "models/micrograin/clipped_cosines.h"
+#include "models/micrograin/diffuse_ring.h"
 #include "models/micrograin/ggx.h"
 #include "models/micrograin/height_masking.h"
 #include "models/micrograin/ndf.h"
@@ -127,37 +127,8 @@ double gdist_diffuse_geometry(const GrainField& f, Vec3 i, Vec3 o, double ior, T
   // behave like |theta' - theta'_c|^(3/2), are graded toward their ends.
   const double kRel = rel_tol;
   static const GaussLegendre rule(16);
-  const bool fresnel = ior > 1;
-  // Ring integrand at azimuth a: <i.m>+ <o.m>+ T |M m'|, with |M m'| <d.m> = A + B cos a + C sin a
-  // (M m' = (st beta_x cos a, st beta_y sin a, h)): in closed form for isotropic grains
-  // without Fresnel, else split where either sinusoid vanishes and refined adaptively.
-  auto ring_integral = [&](double h, double st) {
-    const Sinusoid p_i{h * i.z, st * f.beta_x * i.x, st * f.beta_y * i.y}, p_o{h * o.z, st * f.beta_x * o.x, st * f.beta_y * o.y};
-    // Isotropic grains without Fresnel: |M m'| is constant on the ring (clipped_cosines.h).
-    if (!fresnel && f.beta_x == f.beta_y) return clipped_product_integral(p_i, p_o) / std::hypot(st * f.beta_x, h);
-    std::vector<double> cuts_a{0.0, 2 * kPi};
-    add_sinusoid_zeros(p_i, cuts_a);
-    add_sinusoid_zeros(p_o, cuts_a);
-    std::sort(cuts_a.begin(), cuts_a.end());
-    auto integrand = [&](double a) {
-      const double ca = std::cos(a), sa = std::sin(a);
-      const Vec3 mm{st * ca * f.beta_x, st * sa * f.beta_y, h};  // M m'
-      const double len = std::sqrt(dot(mm, mm));
-      const double im = dot(i, mm) / len, om = dot(o, mm) / len;
-      if (im <= 0 || om <= 0) return 0.0;
-      double t = 1;
-      if (fresnel) t = (1 - fresnel_dielectric(im, ior)) * (1 - fresnel_dielectric(om, ior));
-      return len * im * om * t;
-    };
-    double coarse = 0;
-    for (std::size_t c = 0; c + 1 < cuts_a.size(); ++c)
-      if (cuts_a[c + 1] - cuts_a[c] > 1e-14) coarse += std::fabs(rule.integrate(integrand, cuts_a[c], cuts_a[c + 1]));
-    double ring = 0;
-    for (std::size_t c = 0; c + 1 < cuts_a.size(); ++c)
-      if (cuts_a[c + 1] - cuts_a[c] > 1e-14)
-        ring += integrate_adaptive(integrand, cuts_a[c], cuts_a[c + 1], kRel * coarse / cuts_a.size() + 1e-300);
-    return ring;
-  };
+  // The ring integral over the azimuth, 100 times tighter than the polar rule (diffuse_ring.h).
+  auto ring_integral = [&](double h, double st) { return diffuse_ring_integral(f, i, o, ior, h, st, 1e-2 * kRel); };
   // Unit-space polar angle theta' of the normal: split where the ring of either
   // direction starts to turn away (theta' = pi/2 - theta'_d), which is also where
   // its distant shadow starts (h = sin theta'_d).
