@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "models/core/quadrature.h"
 #include "models/microfacet/fresnel.h"
+#include "models/micrograin/checked_gauss_legendre.h"
 #include "models/micrograin/clipped_cosines.h"
 
 namespace mcref::micrograin {
@@ -13,18 +13,6 @@ namespace mcref::micrograin {
 namespace {
 
 constexpr int kMaxHalvings = 12;  // bounds the work: at most 2^12 parts per piece
-
-// ∫_a^b g: the 24-point value `fine`, accepted when the 16-point rule agrees with
-// it to tol (or to rounding); else each half with tol / 2.
-template <class G>
-double checked_piece(const G& g, double a, double b, double fine, double tol, int halvings) {
-  static const GaussLegendre coarse_rule(16), fine_rule(24);
-  const double diff = std::fabs(coarse_rule.integrate(g, a, b) - fine);
-  if (halvings == 0 || diff <= tol || diff <= 1e-14 * std::fabs(fine)) return fine;
-  const double m = 0.5 * (a + b);
-  return checked_piece(g, a, m, fine_rule.integrate(g, a, m), 0.5 * tol, halvings - 1) +
-         checked_piece(g, m, b, fine_rule.integrate(g, m, b), 0.5 * tol, halvings - 1);
-}
 
 // ∫_0^2pi g for a periodic g analytic on the real line: the trapezoid rule with
 // n = 32, 64, ... points (each holding the last), accepted when it agrees with
@@ -67,7 +55,6 @@ double diffuse_ring_integral(const GrainField& f, Vec3 i, Vec3 o, double ior, do
   std::sort(zeros.begin(), zeros.end());
   // The pieces between consecutive zeros (the last one wrapping round), where
   // both sinusoids are positive, with their 24-point values (the ring's scale).
-  static const GaussLegendre fine_rule(24);
   struct Piece {
     double a, b, fine;
   };
@@ -76,12 +63,14 @@ double diffuse_ring_integral(const GrainField& f, Vec3 i, Vec3 o, double ior, do
   for (std::size_t k = 0; k < zeros.size(); ++k) {
     const double a = zeros[k], b = k + 1 < zeros.size() ? zeros[k + 1] : zeros[0] + 2 * kPi;
     if (!(b > a) || integrand(0.5 * (a + b)) == 0) continue;  // one sinusoid is negative on the piece
-    pieces.push_back({a, b, fine_rule.integrate(integrand, a, b)});
+    pieces.push_back({a, b, gauss_legendre_24(integrand, a, b)});
     scale += pieces.back().fine;
   }
+  const auto rounding = [](double, double) { return 1e-14; };
   double ring = 0;
   for (const Piece& p : pieces)
-    ring += checked_piece(integrand, p.a, p.b, p.fine, rel_tol * scale * (p.b - p.a) / (2 * kPi), kMaxHalvings);
+    ring += checked_gauss_legendre(integrand, p.a, p.b, p.fine, rel_tol * scale * (p.b - p.a) / (2 * kPi), rounding,
+                                   kMaxHalvings);
   return ring;
 }
 
