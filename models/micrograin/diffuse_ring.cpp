@@ -66,11 +66,15 @@ double diffuse_ring_integral(const GrainField& f, Vec3 i, Vec3 o, double ior, do
     pieces.push_back({a, b, gauss_legendre_24(integrand, a, b)});
     scale += pieces.back().fine;
   }
+  // Absolute tolerance: rel_tol of the ring, but not below the rounding of
+  // P_i P_o / |M m'| (2^-50 of its unclipped bound), which a ring clipped to
+  // slivers (e.g. near the equator, h -> 0) could otherwise never meet.
+  const auto amplitude = [](const Sinusoid& p) { return std::fabs(p.A) + std::hypot(p.B, p.C); };
+  const double unclipped = 2 * kPi * amplitude(p_i) * amplitude(p_o) / std::hypot(std::min(sx, sy), h);
+  const double tol = std::max(rel_tol * scale, 0x1p-50 * unclipped);
   const auto rounding = [](double, double) { return 1e-14; };
   double ring = 0;
-  for (const Piece& p : pieces)
-    ring += checked_gauss_legendre(integrand, p.a, p.b, p.fine, rel_tol * scale * (p.b - p.a) / (2 * kPi), rounding,
-                                   kMaxHalvings);
+  for (const Piece& p : pieces) ring += checked_gauss_legendre(integrand, p.a, p.b, p.fine, tol, rounding, kMaxHalvings);
   return ring;
 }
 

@@ -1,7 +1,7 @@
 // Cost of the G_dist diffuse geometry with Fresnel grains (the numeric ring):
 //   <rule>/<theta_i>: gdist_diffuse_geometry per call (items), union masking,
-//   tau0 = 0.4, beta = 1, ior 1.5 (the brdf_dspec cases), over 24 directions
-//   o: theta_o = 5, 25, 45, 65, 80, 88 deg x relative azimuth 0, 1, 2, 3 rad.
+//   tau0 = 0.4, beta = 1, ior 1.5 (the brdf_dspec cases), over 30 directions
+//   o: theta_o = 5, 25, 45, 65, 80, 88 deg x relative azimuth 0, 1, 2, 3, pi rad.
 //   <rule> = current (models/micrograin/micrograin_bsdf.cpp: diffuse_ring.h and
 //   the checked polar rule) or former (tests/models/micrograin_gdist_former.h).
 // Run with --benchmark_repetitions=5 --benchmark_enable_random_interleaving=true.
@@ -25,7 +25,7 @@ void rule(benchmark::State& state, double theta_i_deg) {
   const Vec3 i = spherical_direction(theta_i_deg * kDeg, 0.0);
   std::vector<Vec3> os;
   for (double t : {5.0, 25.0, 45.0, 65.0, 80.0, 88.0})
-    for (double phi : {0.0, 1.0, 2.0, 3.0}) os.push_back(spherical_direction(t * kDeg, phi));
+    for (double phi : {0.0, 1.0, 2.0, 3.0, kPi}) os.push_back(spherical_direction(t * kDeg, phi));
   for (auto _ : state)
     for (const Vec3& o : os)
       benchmark::DoNotOptimize(kCurrent ? gdist_diffuse_geometry(f, i, o, 1.5, TwoWay::Union)
