@@ -15,7 +15,9 @@
 //   rule, 32, 64, ... points until two successive ones agree to rel_tol;
 // - else, between the exact zeros of P_i and P_o (clipped_cosines.h): a
 //   24-point Gauss-Legendre rule per piece, accepted where a 16-point rule
-//   agrees with it to rel_tol of the ring; only pieces where they disagree are halved.
+//   agrees with it to rel_tol of the ring (or to the rounding of the
+//   integrand, for rings clipped to slivers); only pieces where they disagree
+//   are halved.
 #include "models/core/vec.h"
 #include "models/micrograin/grain_field.h"
 
