@@ -1,6 +1,6 @@
 // models/micrograin/clipped_cosines.h: the closed-form ring integral of
 // max(0, p) max(0, q) for sinusoids p, q, against a quadrature that finds the
-// zeros itself (the roots of a quadratic in tan(a / 2)) and integrates each piece with 24-point Gauss-Legendre (exact to rounding for
+// zeros itself (half_angle_zeros.h) and integrates each piece with 24-point Gauss-Legendre (exact to rounding for
 // these smooth pieces).
 #include <gtest/gtest.h>
 
@@ -11,6 +11,7 @@
 #include "models/core/quadrature.h"
 #include "models/core/rng.h"
 #include "models/micrograin/clipped_cosines.h"
+#include "tests/models/half_angle_zeros.h"
 
 using namespace mcref;
 using namespace mcref::micrograin;
@@ -22,14 +23,7 @@ double value(const Sinusoid& p, double a) { return p.A + p.B * std::cos(a) + p.C
 double reference(const Sinusoid& p, const Sinusoid& q) {
   const auto f = [&](double a) { return std::max(0.0, value(p, a)) * std::max(0.0, value(q, a)); };
   std::vector<double> cuts{0.0, 2 * kPi};
-  // Zeros by the half-angle substitution t = tan(a / 2):
-  // (A - B) t^2 + 2 C t + (A + B) = 0, roots by the cancellation-free quadratic formula.
-  for (const Sinusoid* s : {&p, &q}) {
-    const double a2 = s->A - s->B, b2 = 2 * s->C, c2 = s->A + s->B, disc = b2 * b2 - 4 * a2 * c2;
-    if (!(disc > 0) || a2 == 0) continue;
-    const double r = -0.5 * (b2 + std::copysign(std::sqrt(disc), b2));
-    for (double t : {r / a2, c2 / r}) cuts.push_back(std::fmod(2 * std::atan(t) + 2 * kPi, 2 * kPi));
-  }
+  for (const Sinusoid* s : {&p, &q}) add_half_angle_zeros(*s, cuts);
   std::sort(cuts.begin(), cuts.end());
   static const GaussLegendre g(24);
   double sum = 0;
