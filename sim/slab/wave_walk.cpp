@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <stdexcept>
 
 #include "models/core/frame.h"
 #include "models/core/simd_log.h"
@@ -13,6 +14,7 @@
 #include "models/sggx/hg_phase.h"
 #include "models/sggx/sggx_distribution.h"
 #include "sim/slab/substrate.h"
+#include "sim/slab/voxel_density.h"
 
 // The two vector stages are built for AVX-512 (x86-64-v4), AVX2 (x86-64-v3)
 // and baseline x86-64, the loader picking one (GCC function multi-versioning).
@@ -32,6 +34,10 @@ constexpr int N = kWaveLanes;
 // Small integers are held as doubles in the lanes: a loop then has one lane
 // type, which the vectoriser needs for its selects.
 constexpr double kCollision = 0, kTop = 1, kBottom = 2, kLost = 3;  // flight outcomes
+// (OpenVDB layers) a null collision: no event, the path flies on from there; a
+// tentative collision that the cell's bounds do not decide (kLookup: resolved
+// from the voxels before the phase events).
+constexpr double kNull = 4, kLookup = 5;
 constexpr double kGoesOn = 0, kEnded = 1, kScalar = 2;              // lane status after a step
 
 // The paths in flight, one per lane.
@@ -72,6 +78,14 @@ struct Streams {
   void move(int from, int to) { s0[to] = s0[from], s1[to] = s1[from], s2[to] = s2[from], s3[to] = s3[from]; }
 };
 
+// OpenVDB layers: the lateral position in the tile, [0, tile), and a tentative
+// collision's acceptance draw (kLookup lanes). Not double-buffered: the phase
+// events leave them as they are.
+struct Lateral {
+  alignas(64) double x[N], y[N], v[N];
+  void move(int from, int to) { x[to] = x[from], y[to] = y[from]; }
+};
+
 // What the last step did to each lane.
 struct Steps {
   alignas(64) double event[N];   // outcome of the flight
@@ -84,6 +98,7 @@ struct Lanes {
   Paths a, b;
   Streams r;
   Steps st;
+  Lateral pos;
   template <bool kB>
   Paths& paths() {
     if constexpr (kB) return b; else return a;
@@ -187,6 +202,137 @@ MCREF_WAVE_STAGE void fly(Lanes& L, bool in_b, int n, const Stack& l) {
   else fly_stack<kMaxLayers>(L, in_b, n, l);
 }
 
+// OpenVDB layers (S the same everywhere in each): delta tracking against the
+// layer's majorant rho_max sigma(w; S) (the Stack's density is rho_max, the max
+// of the layer's cell majorants hi, sim/slab/majorant_grid.h), exact in
+// direction; a tentative collision at x is real with probability
+// rho(x) / rho_max, decided by u rho_max against its cell's bounds lo <= rho <= hi
+// (real below lo, null from hi) and, in between, from the voxels (kLookup).
+// Cells: the majorants' own (lateral m x m per tile, depth runs of voxel
+// intervals), all layers in one table; a voxel interval's depth cell by a table.
+// Tables (passed beside it): lo and hi per cell, layer k's from offset[k]
+// (majorant_grid.h's order), in float rounded outward; per layer and voxel
+// interval (from the top), its depth cell, layer k's from depth_offset[k].
+// (Not doubles: the vectoriser then knows that its gathers do not read the lanes.)
+struct Grid {
+  double offset[kMaxLayers], depth_offset[kMaxLayers], m[kMaxLayers], inv_cell[kMaxLayers], inv_hz[kMaxLayers];
+  double intervals;          // voxel intervals per layer in depth
+  double last;               // the last cell's index
+  double tile, inv_tile;     // lateral period
+  bool lateral, depth;       // some layer varies laterally; some layer has more than one depth cell
+};
+
+// Attempts per step: a lane whose tentative collisions were all null takes no
+// event in this step (kNull) and flies on in the next.
+constexpr int kAttempts = 2;
+
+// v - n floor(v / n) (inv_n = 1 / n): in [0, n] (n only by rounding).
+inline double wrap_tile(double v, double n, double inv_n) { return v - n * std::floor(v * inv_n); }
+
+// kLateral: some layer varies laterally (else x and y are not tracked);
+// kDepth: some layer has more than one depth cell.
+template <bool kSggx, bool kB, int K, bool kLateral, bool kDepth>
+inline void fly_grid_lanes(Lanes& L, int n, const Stack& stack, const Grid& grid, const float* table_lo,
+                           const float* table_hi, const int* table_depth_cell) {
+  const Stack l = stack;
+  const Grid g = grid;
+  Paths& p = L.paths<kB>();
+  Streams& r = L.r;
+  Steps& st = L.st;
+  Lateral& pos = L.pos;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 d{p.dx[i], p.dy[i], p.dz[i]};
+    const double k = p.layer[i];
+    const double rho_max = pick<K>(l.density, k), top = pick<K>(l.top, k), bottom = pick<K>(l.bottom, k);
+    const double offset = pick<K>(g.offset, k), depth_offset = pick<K>(g.depth_offset, k), m = pick<K>(g.m, k);
+    const double inv_cell = pick<K>(g.inv_cell, k), inv_hz = pick<K>(g.inv_hz, k);
+    double mu = rho_max;
+    if constexpr (kSggx) {
+      const sggx::Mat3 S = pick_matrix<K>(l.S, k);
+      mu *= std::sqrt(std::max(0.0, sggx::quadratic_form(S, d)));  // sggx::projected_area
+    }
+    const double rate = -d.z;  // d(depth)/ds
+    double depth = p.depth[i], x = pos.x[i], y = pos.y[i], v = 0, event = kNull;
+#pragma GCC unroll 4
+    for (int a = 0; a < kAttempts; ++a) {
+      const double tau = -simd_log(2 - r.one_to_two(i));  // -log(1 - u), 1 - u in (0, 1]
+      const double u = r.uniform(i);
+      const double dist = rate > 0 ? (bottom - depth) / rate : rate < 0 ? (top - depth) / rate : INFINITY;
+      const bool collide = tau < mu * dist;
+      const double s = collide ? tau / mu : dist < INFINITY ? dist : 0.0;
+      const double depth1 = collide ? depth + rate * s : rate > 0 ? bottom : top;
+      // The tentative collision's cell (clamped: rounding, and lanes that left).
+      double x1 = 0, y1 = 0, cx = 0, cy = 0, cz = 0;
+      if constexpr (kLateral) {
+        x1 = wrap_tile(x + d.x * s, g.tile, g.inv_tile), y1 = wrap_tile(y + d.y * s, g.tile, g.inv_tile);
+        cx = std::min(m - 1, std::floor(x1 * inv_cell)), cy = std::min(m - 1, std::floor(y1 * inv_cell));
+      }
+      if constexpr (kDepth) {
+        const double vz = std::min(g.intervals - 1, std::max(0.0, std::floor((depth1 - top) * inv_hz)));
+        cz = table_depth_cell[static_cast<int>(depth_offset + vz)];  // (int -> double: exact)
+      }
+      const double cell = std::min(g.last, std::max(0.0, offset + (cz * m + cy) * m + cx));
+      const int c = static_cast<int>(cell);
+      const double v1 = u * rho_max, lo = table_lo[c], hi = table_hi[c];
+      // (Two-way selects, as flags: a select of more values stops the vectoriser.)
+      const double exit = dist < INFINITY ? (rate > 0 ? kBottom : kTop) : kLost;
+      const double tentative = v1 < lo ? kCollision : v1 >= hi ? kNull : kLookup;
+      const double hit = collide ? 1.0 : 0.0;
+      const double outcome = hit * tentative + (1 - hit) * exit;
+      const bool pending = event == kNull;
+      depth = pending ? depth1 : depth, x = pending ? x1 : x, y = pending ? y1 : y;
+      v = pending ? v1 : v;
+      event = pending ? outcome : event;
+    }
+    p.depth[i] = depth, pos.x[i] = x, pos.y[i] = y, pos.v[i] = v;
+    st.event[i] = event;
+  }
+}
+
+template <int K, bool kLateral, bool kDepth>
+inline void fly_grid_stack(Lanes& L, bool in_b, int n, const Stack& l, const Grid& g, const float* lo,
+                           const float* hi, const int* depth_cell) {
+  const bool sggx = l.phase == SlabPhase::kSggxSurface || l.phase == SlabPhase::kSggxFiber;
+  if (sggx && in_b) fly_grid_lanes<true, true, K, kLateral, kDepth>(L, n, l, g, lo, hi, depth_cell);
+  if (sggx && !in_b) fly_grid_lanes<true, false, K, kLateral, kDepth>(L, n, l, g, lo, hi, depth_cell);
+  if (!sggx && in_b) fly_grid_lanes<false, true, K, kLateral, kDepth>(L, n, l, g, lo, hi, depth_cell);
+  if (!sggx && !in_b) fly_grid_lanes<false, false, K, kLateral, kDepth>(L, n, l, g, lo, hi, depth_cell);
+}
+
+template <bool kLateral, bool kDepth>
+inline void fly_grid_cells(Lanes& L, bool in_b, int n, const Stack& l, const Grid& g, const float* lo, const float* hi,
+                           const int* depth_cell) {
+  if (l.layers == 1) fly_grid_stack<1, kLateral, kDepth>(L, in_b, n, l, g, lo, hi, depth_cell);
+  else if (l.layers == 2) fly_grid_stack<2, kLateral, kDepth>(L, in_b, n, l, g, lo, hi, depth_cell);
+  else fly_grid_stack<kMaxLayers, kLateral, kDepth>(L, in_b, n, l, g, lo, hi, depth_cell);
+}
+
+// One stage per kind of cells (in one function, GCC stops vectorising some of them).
+MCREF_WAVE_STAGE void fly_grid_lateral_depth(Lanes& L, bool in_b, int n, const Stack& l, const Grid& g, const float* lo,
+                                             const float* hi, const int* depth_cell) {
+  fly_grid_cells<true, true>(L, in_b, n, l, g, lo, hi, depth_cell);
+}
+MCREF_WAVE_STAGE void fly_grid_lateral(Lanes& L, bool in_b, int n, const Stack& l, const Grid& g, const float* lo,
+                                       const float* hi, const int* depth_cell) {
+  fly_grid_cells<true, false>(L, in_b, n, l, g, lo, hi, depth_cell);
+}
+MCREF_WAVE_STAGE void fly_grid_depth(Lanes& L, bool in_b, int n, const Stack& l, const Grid& g, const float* lo,
+                                     const float* hi, const int* depth_cell) {
+  fly_grid_cells<false, true>(L, in_b, n, l, g, lo, hi, depth_cell);
+}
+MCREF_WAVE_STAGE void fly_grid_uniform(Lanes& L, bool in_b, int n, const Stack& l, const Grid& g, const float* lo,
+                                       const float* hi, const int* depth_cell) {
+  fly_grid_cells<false, false>(L, in_b, n, l, g, lo, hi, depth_cell);
+}
+
+void fly_grid(Lanes& L, bool in_b, int n, const Stack& l, const Grid& g, const float* lo, const float* hi,
+              const int* depth_cell) {
+  if (g.lateral && g.depth) fly_grid_lateral_depth(L, in_b, n, l, g, lo, hi, depth_cell);
+  if (g.lateral && !g.depth) fly_grid_lateral(L, in_b, n, l, g, lo, hi, depth_cell);
+  if (!g.lateral && g.depth) fly_grid_depth(L, in_b, n, l, g, lo, hi, depth_cell);
+  if (!g.lateral && !g.depth) fly_grid_uniform(L, in_b, n, l, g, lo, hi, depth_cell);
+}
+
 // The phase-function event of every lane that collided, as walk() does it
 // (order, first class, weight, direction, roulette), from `in` into `out`;
 // the other lanes are copied. The draws are made for every lane, and unused
@@ -232,7 +378,7 @@ inline void scatter_lanes(Lanes& L, int n, const Stack& stack, int max_order, in
     double wr = in.wr[i] * fr, wg = in.wg[i] * fg, wb = in.wb[i] * fb;
     const double alive = valid * roulette(wr, wg, wb, order + 1, from, u_roulette);
     const bool s = scatter > 0;
-    st.status[i] = ev != kCollision ? kScalar : scatter * alive > 0 ? kGoesOn : kEnded;
+    st.status[i] = ev == kNull ? kGoesOn : ev != kCollision ? kScalar : scatter * alive > 0 ? kGoesOn : kEnded;
     out.depth[i] = in.depth[i];
     out.layer[i] = k;
     out.order[i] = order + scatter;
@@ -302,10 +448,19 @@ double leave_or_bounce(Paths& p, Streams& r, double ev, int i, const SlabMedium&
   return roulette(p.wr[i], p.wg[i], p.wb[i], order + 1, s.roulette_from, r.uniform(i)) > 0 ? kGoesOn : kEnded;
 }
 
+// The nearest float at most v, at least v.
+float float_below(double v) {
+  const float f = static_cast<float>(v);
+  return f > v ? std::nextafter(f, -INFINITY) : f;
+}
+float float_above(double v) {
+  const float f = static_cast<float>(v);
+  return f < v ? std::nextafter(f, INFINITY) : f;
+}
+
 }  // namespace
 
 std::string wave_walk_unsupported(const SlabGeometry& g) {
-  if (g.grid.openvdb) return "the wave walk takes backend = \"homogeneous\"";
   if (g.layers.size() > kMaxLayers)
     return "the wave walk takes at most " + std::to_string(kMaxLayers) + " layers, not " + std::to_string(g.layers.size());
   for (const SlabLayer& l : g.layers)
@@ -331,16 +486,63 @@ std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi
     l.ar[k] = sl.albedo.r, l.ag[k] = sl.albedo.g, l.ab[k] = sl.albedo.b;
     l.fr[k] = sl.f0.r, l.fg[k] = sl.f0.g, l.fb[k] = sl.f0.b;
   }
+  // OpenVDB layers: each layer's majorant density and S, and the cells' bounds.
+  const bool grid = medium.grids() != nullptr;
+  std::vector<float> lo, hi;
+  std::vector<int> depth_cell;
+  Grid g{};
+  if (grid) {
+    const SlabGrid& sg = medium.geometry().grid;
+    g.intervals = sg.depth_voxels;
+    g.tile = sg.tile, g.inv_tile = 1 / sg.tile;
+    for (int k = 0; k < l.layers; ++k) {
+      const LayerMajorants& M = medium.majorants()[k];
+      if (M.s_varies) throw std::invalid_argument("the wave walk takes OpenVDB layers whose SGGX matrix is the same everywhere");
+      l.density[k] = *std::max_element(M.hi.begin(), M.hi.end());
+      if (M.one_s)
+        for (int e = 0; e < 9; ++e) l.S[e][k] = M.s.S.m[e / 3][e % 3], l.L[e][k] = M.s.L.m[e / 3][e % 3];
+      g.offset[k] = static_cast<double>(lo.size());
+      for (const double v : M.lo) lo.push_back(float_below(v));
+      for (const double v : M.hi) hi.push_back(float_above(v));
+      g.m[k] = M.lateral, g.inv_cell[k] = M.inv_cell_size;
+      g.lateral = g.lateral || M.lateral > 1;
+      g.depth = g.depth || M.depth_cells() > 1;
+      const double top = l.top[k], hz = (l.bottom[k] - top) / sg.depth_voxels;
+      g.inv_hz[k] = 1 / hz;
+      g.depth_offset[k] = static_cast<double>(depth_cell.size());
+      for (int vz = 0; vz < sg.depth_voxels; ++vz) {  // the depth cell holding the interval's middle
+        const double middle = top + (vz + 0.5) * hz;
+        depth_cell.push_back(static_cast<int>(std::upper_bound(M.faces.begin() + 1, M.faces.end() - 1, middle) - (M.faces.begin() + 1)));
+      }
+    }
+    g.last = static_cast<double>(lo.size() - 1);
+  }
   const auto L = std::make_unique<Lanes>();
   Streams& r = L->r;
   Steps& st = L->st;
+  Lateral& pos = L->pos;
   for (int i = 0; i < N; ++i) r.s0[i] = rng.next_u64(), r.s1[i] = rng.next_u64(), r.s2[i] = rng.next_u64(), r.s3[i] = rng.next_u64();
+  // A new path: entering the top face, uniformly over the tile (laterally varying OpenVDB layers).
+  const auto start = [&](Paths& p, int i) {
+    p.start(i, -wi);
+    if (!g.lateral) return;  // (x, y: 0, unused)
+    pos.x[i] = r.uniform(i) * g.tile;
+    pos.y[i] = r.uniform(i) * g.tile;
+  };
   int n = static_cast<int>(std::min<std::uint64_t>(N, count));
   bool in_b = false;  // the paths are in L->b (else L->a)
-  for (int i = 0; i < n; ++i) L->a.start(i, -wi);
+  for (int i = 0; i < n; ++i) start(L->a, i);
   std::uint64_t started = static_cast<std::uint64_t>(n), events = 0;
   while (n > 0) {
-    fly(*L, in_b, n, l);
+    if (grid) {
+      fly_grid(*L, in_b, n, l, g, lo.data(), hi.data(), depth_cell.data());
+      const Paths& p = in_b ? L->b : L->a;
+      for (int i = 0; i < n; ++i)  // tentative collisions the cells' bounds left open
+        if (st.event[i] == kLookup)
+          st.event[i] = pos.v[i] < medium.voxels()->density(static_cast<int>(p.layer[i]), pos.x[i], pos.y[i], p.depth[i]) ? kCollision : kNull;
+    } else {
+      fly(*L, in_b, n, l);
+    }
     scatter(*L, in_b, n, l, s.max_order, s.roulette_from);
     in_b = !in_b;
     Paths& p = in_b ? L->b : L->a;
@@ -352,12 +554,13 @@ std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi
       if (status != kEnded) continue;
       events += static_cast<std::uint64_t>(p.order[i]);
       if (started < count) {
-        p.start(i, -wi);
+        start(p, i);
         ++started;
       } else {
         --n;
         p.move(n, i);
         r.move(n, i);
+        pos.move(n, i);
       }
     }
   }

@@ -82,9 +82,9 @@ samples = 1
   return parse_experiment(text, "bench.toml");
 }
 
-// Paths through the engine; returns scattering events.
+// Paths through the engine (the scalar walk, or the wave walk); returns scattering events.
 std::uint64_t engine_paths(const volume::SlabMedium& medium, const std::vector<Vec3>& dirs, std::uint64_t paths,
-                           std::uint64_t seed) {
+                           std::uint64_t seed, bool wave = false) {
   BrdfLayout layout;
   layout.transmission = true;
   layout.folded = true;
@@ -92,9 +92,13 @@ std::uint64_t engine_paths(const volume::SlabMedium& medium, const std::vector<V
   std::atomic<std::uint64_t> events{0};
   for (std::size_t d = 0; d < dirs.size(); ++d) {
     run_chunks(paths, layout.sums_size(), stream_seed({seed, d}), [&](Rng& rng, std::uint64_t count, Sums& s) {
-      auto flight = volume::make_flight(medium);
       BrdfAccumulator acc(layout, 0.0, s);
       volume::WalkSettings ws;
+      if (wave) {
+        events += volume::wave_walk(medium, ws, dirs[d], count, rng, acc);
+        return;
+      }
+      auto flight = volume::make_flight(medium);
       std::uint64_t e = 0;
       for (std::uint64_t n = 0; n < count; ++n) e += volume::walk(medium, *flight, ws, dirs[d], rng, acc);
       events += e;
@@ -155,7 +159,7 @@ void report_spread(benchmark::State& state, const std::string& name, const std::
 }
 
 // Homogeneous and heterogeneous runs back to back, the order alternating.
-void pair(benchmark::State& state, std::string kind) {
+void pair(benchmark::State& state, std::string kind, bool wave) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
   const volume::SlabMedium homogeneous(slab(false).slab);
   const std::unique_ptr<volume::SlabMedium> het = heterogeneous(kind);
@@ -171,7 +175,7 @@ void pair(benchmark::State& state, std::string kind) {
       const int which = (k + static_cast<int>(it)) % 2;  // 0: homogeneous, 1: heterogeneous
       const auto t0 = clock::now();
       const double c0 = process_cpu_seconds();
-      e[which] = static_cast<double>(engine_paths(which ? *het : homogeneous, dirs, kPairPaths, it));
+      e[which] = static_cast<double>(engine_paths(which ? *het : homogeneous, dirs, kPairPaths, it, wave));
       cpu[which] = process_cpu_seconds() - c0;
       wall[which] = std::chrono::duration<double>(clock::now() - t0).count();
     }
@@ -399,8 +403,10 @@ void bsdf32(benchmark::State& state) {
 
 BENCHMARK_CAPTURE(engine, homogeneous, false)->Name("slab/homogeneous")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(engine, openvdb, true)->Name("slab/openvdb")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
-BENCHMARK_CAPTURE(pair, linear, "linear")->Name("slab/pair/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(pair, lateral, "lateral")->Name("slab/pair/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, linear, "linear", false)->Name("slab/pair/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, lateral, "lateral", false)->Name("slab/pair/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, wave_linear, "linear", true)->Name("slab/pair/wave/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, wave_lateral, "lateral", true)->Name("slab/pair/wave/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(flights, linear, "linear")->Name("slab/flight/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(flights, lateral, "lateral")->Name("slab/flight/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(floor_walk)->Name("slab/floor")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
