@@ -10,12 +10,17 @@
 // agree with walk()'s within statistics, and are bit-identical for any thread
 // count like walk()'s.
 //
-// Covers stacks of up to 4 homogeneous layers of one phase function (SGGX
-// surface and fibre flakes mix; or Henyey-Greenstein, isotropic, Lambert
-// sphere) over any substrate. Each lane holds its layer's index and reads that
-// layer's parameters by selects; a path crosses an inner face in the scalar
-// pass (the flight ends there and the next one starts afresh: exact, the
-// exponential being memoryless).
+// Covers stacks of up to 4 layers of one phase function (SGGX surface and
+// fibre flakes mix; or Henyey-Greenstein, isotropic, Lambert sphere) over any
+// substrate. Each lane holds its layer's index and reads that layer's
+// parameters by selects; a path crosses an inner face in the scalar pass (the
+// flight ends there and the next one starts afresh: exact, the exponential
+// being memoryless). Layers are homogeneous, or OpenVDB grids whose SGGX
+// matrix is the same throughout each layer (any density): delta tracking
+// (Woodcock 1965) against the layer's largest cell majorant, a tentative
+// collision decided by its cell's bounds (sim/slab/majorant_grid.h) and, where
+// they leave it open, by the voxels in the scalar code; a lane tracks its
+// lateral position in the tile.
 #include <cstdint>
 #include <string>
 

@@ -14,6 +14,7 @@
 //                     homogeneous events per second of wall time, with its min and max;
 //                     cpu_ratio the same per second of the process's CPU time (robust
 //                     to other jobs on the machine). (Events per path: both.)
+//  slab/pair/wave/<medium> : the same with the wave walk (sim/slab/wave_walk.h) on both sides.
 //  slab/flight/<medium> : free flights alone, 1 thread: 2^16 photons spread over
 //                     the layer (uniform in the tile and in depth, isotropic
 //                     directions) flown once each to their next collision or out,
