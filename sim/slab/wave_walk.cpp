@@ -252,15 +252,17 @@ inline void fly_grid_lanes(Lanes& L, int n, const Stack& stack, const Grid& grid
       mu *= std::sqrt(std::max(0.0, sggx::quadratic_form(S, d)));  // sggx::projected_area
     }
     const double rate = -d.z;  // d(depth)/ds
+    // (Divisions once per step, not per attempt.)
+    const double face = rate > 0 ? bottom : top, inv_rate = 1 / rate, inv_mu = 1 / mu;
     double depth = p.depth[i], x = pos.x[i], y = pos.y[i], v = 0, event = kNull;
 #pragma GCC unroll 4
     for (int a = 0; a < kAttempts; ++a) {
       const double tau = -simd_log(2 - r.one_to_two(i));  // -log(1 - u), 1 - u in (0, 1]
       const double u = r.uniform(i);
-      const double dist = rate > 0 ? (bottom - depth) / rate : rate < 0 ? (top - depth) / rate : INFINITY;
+      const double dist = rate != 0 ? (face - depth) * inv_rate : INFINITY;
       const bool collide = tau < mu * dist;
-      const double s = collide ? tau / mu : dist < INFINITY ? dist : 0.0;
-      const double depth1 = collide ? depth + rate * s : rate > 0 ? bottom : top;
+      const double s = collide ? tau * inv_mu : dist < INFINITY ? dist : 0.0;
+      const double depth1 = collide ? depth + rate * s : face;
       // The tentative collision's cell (clamped: rounding, and lanes that left).
       double x1 = 0, y1 = 0, cx = 0, cy = 0, cz = 0;
       if constexpr (kLateral) {

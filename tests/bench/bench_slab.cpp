@@ -15,6 +15,9 @@
 //                     cpu_ratio the same per second of the process's CPU time (robust
 //                     to other jobs on the machine). (Events per path: both.)
 //  slab/pair/wave/<medium> : the same with the wave walk (sim/slab/wave_walk.h) on both sides.
+//  slab/pair/walks/<medium> : the heterogeneous slab through the scalar walk, then
+//                     through the wave walk (counters as above: wave / scalar;
+//                     events/path_hom is the scalar walk's there).
 //  slab/flight/<medium> : free flights alone, 1 thread: 2^16 photons spread over
 //                     the layer (uniform in the tile and in depth, isotropic
 //                     directions) flown once each to their next collision or out,
@@ -159,24 +162,26 @@ void report_spread(benchmark::State& state, const std::string& name, const std::
   state.counters[name + "_max"] = *std::max_element(v.begin(), v.end());
 }
 
-// Homogeneous and heterogeneous runs back to back, the order alternating.
-void pair(benchmark::State& state, std::string kind, bool wave) {
+// Two runs back to back, the order alternating: side 0 (the homogeneous slab,
+// or with `walks` the heterogeneous one through the scalar walk) and side 1 (the
+// heterogeneous slab; through the wave walk if `wave`, side 0 too unless `walks`).
+void pair(benchmark::State& state, std::string kind, bool wave, bool walks = false) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
   const volume::SlabMedium homogeneous(slab(false).slab);
   const std::unique_ptr<volume::SlabMedium> het = heterogeneous(kind);
   const std::vector<Vec3> dirs{spherical_direction(30 * kPi / 180, 0)};
   using clock = std::chrono::steady_clock;
   double events[2] = {0, 0};
-  std::vector<double> wall_ratios, cpu_ratios;  // heterogeneous / homogeneous events per second
+  std::vector<double> wall_ratios, cpu_ratios;  // side 1 / side 0 events per second
   std::uint64_t it = 0;
   for (auto _ : state) {
     ++it;
     double wall[2], cpu[2], e[2];
     for (int k = 0; k < 2; ++k) {
-      const int which = (k + static_cast<int>(it)) % 2;  // 0: homogeneous, 1: heterogeneous
+      const int which = (k + static_cast<int>(it)) % 2;  // side
       const auto t0 = clock::now();
       const double c0 = process_cpu_seconds();
-      e[which] = static_cast<double>(engine_paths(which ? *het : homogeneous, dirs, kPairPaths, it, wave));
+      e[which] = static_cast<double>(engine_paths(which || walks ? *het : homogeneous, dirs, kPairPaths, it, which ? wave : wave && !walks));
       cpu[which] = process_cpu_seconds() - c0;
       wall[which] = std::chrono::duration<double>(clock::now() - t0).count();
     }
@@ -408,6 +413,8 @@ BENCHMARK_CAPTURE(pair, linear, "linear", false)->Name("slab/pair/linear")->Iter
 BENCHMARK_CAPTURE(pair, lateral, "lateral", false)->Name("slab/pair/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(pair, wave_linear, "linear", true)->Name("slab/pair/wave/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(pair, wave_lateral, "lateral", true)->Name("slab/pair/wave/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, walks_linear, "linear", true, true)->Name("slab/pair/walks/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, walks_lateral, "lateral", true, true)->Name("slab/pair/walks/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(flights, linear, "linear")->Name("slab/flight/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(flights, lateral, "lateral")->Name("slab/flight/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(floor_walk)->Name("slab/floor")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
