@@ -7,7 +7,7 @@
 //   substrate_eta = 0.2, substrate_k = 3.9       conductors: complex IOR, one value or [r, g, b]
 //   substrate_alpha                             rough_conductor (GGX), required
 //   delta_transmission = true                   record the unscattered transmission
-//   walk = "scalar" | "wave"                    path by path, or data-parallel (up to 4 homogeneous layers)
+//   walk = "scalar" | "wave"                    path by path, or data-parallel (up to 4 layers, either backend)
 //   estimator = "analog" | "next_event" | "next_event_mis"   escapes tallied where they happen, or by
 //                                               their probability at every event (scalar walk, homogeneous)
 //   backend = "homogeneous" | "openvdb"         free-flight sampling (default homogeneous)
