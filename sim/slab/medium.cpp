@@ -23,6 +23,7 @@ SlabMedium::SlabMedium(const SlabGeometry& g, std::unique_ptr<DensityGrids> grid
   if (grids_) {
     majorants_ = build_majorants(*grids_, lateral_block, reach);
     voxels_ = std::make_unique<VoxelDensity>(*grids_);
+    cell_bounds_ = flatten_cell_bounds(majorants_, g.grid.depth_voxels);
   }
 }
 

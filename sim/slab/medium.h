@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "sim/slab/cell_bounds.h"
 #include "sim/slab/majorant_grid.h"
 #include "sim/slab/phase.h"
 #include "sim/slab/slab_geometry.h"
@@ -40,6 +41,8 @@ class SlabMedium {
   const std::vector<LayerMajorants>& majorants() const { return majorants_; }
   // Dense copy of the density voxels for the lookups (OpenVDB grids only).
   const VoxelDensity* voxels() const { return voxels_.get(); }
+  // The majorant cells' bounds in one flat table (OpenVDB grids only).
+  const CellBounds& cell_bounds() const { return cell_bounds_; }
 
  private:
   SlabGeometry geometry_;
@@ -47,6 +50,7 @@ class SlabMedium {
   std::unique_ptr<DensityGrids> grids_;
   std::vector<LayerMajorants> majorants_;
   std::unique_ptr<VoxelDensity> voxels_;
+  CellBounds cell_bounds_;
 };
 
 }  // namespace mcref::volume

@@ -209,11 +209,8 @@ MCREF_WAVE_STAGE void fly(Lanes& L, bool in_b, int n, const Stack& l) {
 // rho(x) / rho_max, decided by u rho_max against its cell's bounds lo <= rho <= hi
 // (real below lo, null from hi) and, in between, from the voxels (kLookup).
 // Cells: the majorants' own (lateral m x m per tile, depth runs of voxel
-// intervals), all layers in one table; a voxel interval's depth cell by a table.
-// Tables (passed beside it): lo and hi per cell, layer k's from offset[k]
-// (majorant_grid.h's order), in float rounded outward; per layer and voxel
-// interval (from the top), its depth cell, layer k's from depth_offset[k].
-// (Not doubles: the vectoriser then knows that its gathers do not read the lanes.)
+// intervals), read from the medium's flat tables (sim/slab/cell_bounds.h),
+// passed beside this.
 struct Grid {
   double offset[kMaxLayers], depth_offset[kMaxLayers], m[kMaxLayers], inv_cell[kMaxLayers], inv_hz[kMaxLayers];
   double intervals;          // voxel intervals per layer in depth
@@ -229,7 +226,7 @@ constexpr int kAttempts = 2;
 // v - n floor(v / n) (inv_n = 1 / n): in [0, n] (n only by rounding).
 inline double wrap_tile(double v, double n, double inv_n) { return v - n * std::floor(v * inv_n); }
 
-// kLateral: some layer varies laterally (else x and y are not tracked);
+// kLateral: some layer varies laterally (else x and y stay 0);
 // kDepth: some layer has more than one depth cell.
 template <bool kSggx, bool kB, int K, bool kLateral, bool kDepth>
 inline void fly_grid_lanes(Lanes& L, int n, const Stack& stack, const Grid& grid, const float* table_lo,
@@ -450,16 +447,6 @@ double leave_or_bounce(Paths& p, Streams& r, double ev, int i, const SlabMedium&
   return roulette(p.wr[i], p.wg[i], p.wb[i], order + 1, s.roulette_from, r.uniform(i)) > 0 ? kGoesOn : kEnded;
 }
 
-// The nearest float at most v, at least v.
-float float_below(double v) {
-  const float f = static_cast<float>(v);
-  return f > v ? std::nextafter(f, -INFINITY) : f;
-}
-float float_above(double v) {
-  const float f = static_cast<float>(v);
-  return f < v ? std::nextafter(f, INFINITY) : f;
-}
-
 }  // namespace
 
 std::string wave_walk_unsupported(const SlabGeometry& g) {
@@ -488,10 +475,9 @@ std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi
     l.ar[k] = sl.albedo.r, l.ag[k] = sl.albedo.g, l.ab[k] = sl.albedo.b;
     l.fr[k] = sl.f0.r, l.fg[k] = sl.f0.g, l.fb[k] = sl.f0.b;
   }
-  // OpenVDB layers: each layer's majorant density and S, and the cells' bounds.
+  // OpenVDB layers: each layer's majorant density and S, and where its cells' bounds are.
   const bool grid = medium.grids() != nullptr;
-  std::vector<float> lo, hi;
-  std::vector<int> depth_cell;
+  const CellBounds& bounds = medium.cell_bounds();
   Grid g{};
   if (grid) {
     const SlabGrid& sg = medium.geometry().grid;
@@ -500,24 +486,17 @@ std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi
     for (int k = 0; k < l.layers; ++k) {
       const LayerMajorants& M = medium.majorants()[k];
       if (M.s_varies) throw std::invalid_argument("the wave walk takes OpenVDB layers whose SGGX matrix is the same everywhere");
-      l.density[k] = *std::max_element(M.hi.begin(), M.hi.end());
+      l.density[k] = bounds.rho_max[k];
       if (M.one_s)
         for (int e = 0; e < 9; ++e) l.S[e][k] = M.s.S.m[e / 3][e % 3], l.L[e][k] = M.s.L.m[e / 3][e % 3];
-      g.offset[k] = static_cast<double>(lo.size());
-      for (const double v : M.lo) lo.push_back(float_below(v));
-      for (const double v : M.hi) hi.push_back(float_above(v));
+      g.offset[k] = static_cast<double>(bounds.offset[k]);
+      g.depth_offset[k] = static_cast<double>(bounds.depth_offset[k]);
       g.m[k] = M.lateral, g.inv_cell[k] = M.inv_cell_size;
+      g.inv_hz[k] = sg.depth_voxels / (l.bottom[k] - l.top[k]);
       g.lateral = g.lateral || M.lateral > 1;
       g.depth = g.depth || M.depth_cells() > 1;
-      const double top = l.top[k], hz = (l.bottom[k] - top) / sg.depth_voxels;
-      g.inv_hz[k] = 1 / hz;
-      g.depth_offset[k] = static_cast<double>(depth_cell.size());
-      for (int vz = 0; vz < sg.depth_voxels; ++vz) {  // the depth cell holding the interval's middle
-        const double middle = top + (vz + 0.5) * hz;
-        depth_cell.push_back(static_cast<int>(std::upper_bound(M.faces.begin() + 1, M.faces.end() - 1, middle) - (M.faces.begin() + 1)));
-      }
     }
-    g.last = static_cast<double>(lo.size() - 1);
+    g.last = static_cast<double>(bounds.lo.size() - 1);
   }
   const auto L = std::make_unique<Lanes>();
   Streams& r = L->r;
@@ -537,7 +516,7 @@ std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi
   std::uint64_t started = static_cast<std::uint64_t>(n), events = 0;
   while (n > 0) {
     if (grid) {
-      fly_grid(*L, in_b, n, l, g, lo.data(), hi.data(), depth_cell.data());
+      fly_grid(*L, in_b, n, l, g, bounds.lo.data(), bounds.hi.data(), bounds.depth_cell.data());
       const Paths& p = in_b ? L->b : L->a;
       for (int i = 0; i < n; ++i)  // tentative collisions the cells' bounds left open
         if (st.event[i] == kLookup)
