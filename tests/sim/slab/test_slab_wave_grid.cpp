@@ -18,9 +18,11 @@
 //    the paths both passed.) It fails with the cells' x and y swapped
 //    (chi2/dof 5.6 to 63); on cos(2 pi x) cos(4 pi y), where the swap averages
 //    out in these tables, it did not.
-// Then the white furnace, thread-count independence, and what it rejects.
+// Then the white furnace, thread-count independence, what it rejects, and the
+// flat tables of the cells' bounds it reads (sim/slab/cell_bounds.h).
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -218,4 +220,42 @@ TEST(WaveGrid, RefusesAVaryingSggxMatrix) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("SGGX matrix"), std::string::npos) << e.what();
   }
+}
+
+// The flat tables (sim/slab/cell_bounds.h) against the majorants they come
+// from, on the laterally varying layer with a depth profile (4 depth cells of
+// 32 x 32 lateral cells) over a homogeneous-looking second layer: every float
+// bound on the outside of its double (lo below, hi above, by at most one float
+// step), each voxel interval mapped to the depth cell that holds it, and
+// rho_max the layer's largest hi.
+TEST(CellBounds, FlatTablesKeepTheMajorantsBounds) {
+  SlabGeometry g = lateral_geometry(true);
+  g.layers.push_back(g.layers.front());
+  g.layers.back().profile = DensityProfile{};
+  const auto medium = cosine_lateral_medium(g);
+  const volume::CellBounds& b = medium->cell_bounds();
+  ASSERT_EQ(b.offset.size(), 2u);
+  std::size_t cells = 0;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const volume::LayerMajorants& M = medium->majorants()[k];
+    ASSERT_EQ(b.offset[k], cells);
+    EXPECT_EQ(b.rho_max[k], *std::max_element(M.hi.begin(), M.hi.end()));
+    for (std::size_t c = 0; c < M.hi.size(); ++c) {
+      const float lo = b.lo[cells + c], hi = b.hi[cells + c];
+      EXPECT_LE(lo, M.lo[c]);
+      EXPECT_GT(std::nextafter(lo, INFINITY), M.lo[c]);
+      EXPECT_GE(hi, M.hi[c]);
+      EXPECT_LT(std::nextafter(hi, -INFINITY), M.hi[c]);
+    }
+    cells += M.hi.size();
+    const int nz = g.grid.depth_voxels;
+    const double top = M.faces.front(), hz = (M.faces.back() - top) / nz;
+    for (int vz = 0; vz < nz; ++vz) {
+      const int cell = b.depth_cell[b.depth_offset[k] + static_cast<std::size_t>(vz)];
+      EXPECT_LE(M.faces[static_cast<std::size_t>(cell)], top + vz * hz + 1e-12) << k << " " << vz;
+      EXPECT_GE(M.faces[static_cast<std::size_t>(cell) + 1], top + (vz + 1) * hz - 1e-12) << k << " " << vz;
+    }
+  }
+  EXPECT_EQ(medium->majorants()[0].depth_cells(), 4);
+  EXPECT_EQ(b.lo.size(), cells);
 }
