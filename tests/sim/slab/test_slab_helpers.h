@@ -32,6 +32,29 @@ samples = 20000
                                  "slab_test.toml");
 }
 
+// An OpenVDB slab of one SGGX surface-like layer (alpha 0.5, thickness 1,
+// density 3) on a unit tile of 16 x 16 voxel columns and 4 voxel intervals in
+// depth, for tests that vary its density laterally by editing the grids (no
+// TOML does); `layer_extra`: more keys of the layer.
+inline mcref::Experiment lateral_grid_experiment(const std::string& layer_extra = "") {
+  return mcref::parse_experiment(R"([geometry]
+kind = "slab"
+backend = "openvdb"
+lateral_voxels = 16
+depth_voxels = 4
+[[geometry.layer]]
+phase = "sggx_surface"
+alpha = 0.5
+thickness = 1.0
+density = 3.0
+)" + layer_extra + R"([[measure]]
+quantity = "brdf"
+theta_i_deg = [30]
+samples = 1
+)",
+                                 "lateral.toml");
+}
+
 inline std::vector<mcref::Table> run(const mcref::Experiment& ex, int threads = 2) {
   mcref::SimulateOptions o;
   o.threads = threads;

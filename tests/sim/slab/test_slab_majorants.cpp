@@ -177,22 +177,8 @@ void expect_boxes_agree_with_one_cell(const std::function<std::unique_ptr<volume
 
 // A laterally varying layer: density times 1 + 0.5 cos(2 pi x) cos(2 pi y) on a
 // unit tile of 16 x 16 voxel columns (SGGX surface-like, alpha 0.5), with
-// majorant cells of `block` columns and boxes of `reach` (0: automatic).
-const char* kLateral = R"([geometry]
-kind = "slab"
-backend = "openvdb"
-lateral_voxels = 16
-depth_voxels = 4
-[[geometry.layer]]
-phase = "sggx_surface"
-alpha = 0.5
-thickness = 1.0
-density = 3.0
-[[measure]]
-quantity = "brdf"
-theta_i_deg = [30]
-samples = 1
-)";
+// majorant cells of `block` columns and boxes of `reach` (0: automatic), on
+// slab_test::lateral_grid_experiment's layer.
 
 std::unique_ptr<volume::SlabMedium> cosine_lateral_medium(const SlabGeometry& g, int block, int reach) {
   auto grids = std::make_unique<volume::DensityGrids>(g);
@@ -271,7 +257,7 @@ TEST(SlabMajorants, BoundTheExtinctionInEveryCell) {
 // On the random layer and the cosine layer, cells of half a column and of one.
 TEST(SlabMajorants, BoxMajorantsAreTheMaxOverTheirBoxes) {
   const Experiment random = parse_experiment(kGeometry, "m.toml");
-  const Experiment lateral = parse_experiment(kLateral, "lateral.toml");
+  const Experiment lateral = slab_test::lateral_grid_experiment();
   std::size_t boxes = 0, uneven = 0;
   for (const int block : {0, 1}) {
     Rng rng(2025);
@@ -428,7 +414,7 @@ samples = 20000
 // (2^17 paths each, seeds 7, 8, 9 for the boxes and 6 for one cell; the
 // family of 9 fails by chance with probability < 7e-5).
 TEST(SlabMajorants, LateralFlightsDoNotDependOnTheCellSize) {
-  const Experiment ex = parse_experiment(kLateral, "lateral.toml");
+  const Experiment ex = slab_test::lateral_grid_experiment();
   const SlabGeometry& g = ex.slab;
   const auto lateral_medium = [&](int block, int reach) { return cosine_lateral_medium(g, block, reach); };
   const auto automatic = lateral_medium(1, 0);
@@ -443,7 +429,7 @@ TEST(SlabMajorants, LateralFlightsDoNotDependOnTheCellSize) {
 // above (theta_i = 50 deg, seed 11), in run_chunks' 4 chunks as simulate_slab
 // runs them, are bit-identical on 1 and 2 threads.
 TEST(SlabMajorants, LateralPathBitIdenticalForOneAndTwoThreads) {
-  const Experiment ex = parse_experiment(kLateral, "lateral.toml");
+  const Experiment ex = slab_test::lateral_grid_experiment();
   const auto medium = cosine_lateral_medium(ex.slab, 1, 0);
   ASSERT_EQ(medium->majorants()[0].lateral, 16);
   BrdfLayout layout;
@@ -494,7 +480,7 @@ TEST(SlabMajorants, BoxFlightsAgreeWithOneCellOnARandomStack) {
 // 1, automatic and 9). 18 comparisons within 4.5 combined standard errors: all pass
 // by chance with probability > 1 - 1.3e-4.
 TEST(SlabMajorants, HalfVoxelCellFlightsAgreeWithOneCell) {
-  const Experiment lateral = parse_experiment(kLateral, "lateral.toml");
+  const Experiment lateral = slab_test::lateral_grid_experiment();
   const auto cosine = [&](int block, int reach) { return cosine_lateral_medium(lateral.slab, block, reach); };
   ASSERT_EQ(cosine(0, 0)->majorants()[0].lateral, 32);
   expect_boxes_agree_with_one_cell(cosine, lateral.slab, spherical_direction(60 * kPi / 180, 0.3), 1 << 17, 30, {1, 0, 31}, 0);

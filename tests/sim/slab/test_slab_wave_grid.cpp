@@ -75,23 +75,8 @@ class WaveGridAgainstScalar : public testing::TestWithParam<int> {};
 // A laterally varying layer (density times 1 + 0.9 cos(2 pi x) on a unit tile
 // of 16 x 16 voxel columns), optionally with a linear depth profile.
 SlabGeometry lateral_geometry(bool profile) {
-  return parse_experiment(std::string(R"([geometry]
-kind = "slab"
-backend = "openvdb"
-lateral_voxels = 16
-depth_voxels = 4
-[[geometry.layer]]
-phase = "sggx_surface"
-alpha = 0.5
-thickness = 1.0
-density = 3.0
-albedo = [0.9, 0.8, 0.7]
-)") + (profile ? "profile = \"linear\"\nprofile_top = 0.3\nprofile_bottom = 1.7\n" : "") + R"([[measure]]
-quantity = "brdf"
-theta_i_deg = [30]
-samples = 1
-)",
-                          "lateral.toml")
+  return slab_test::lateral_grid_experiment(std::string("albedo = [0.9, 0.8, 0.7]\n") +
+                                            (profile ? "profile = \"linear\"\nprofile_top = 0.3\nprofile_bottom = 1.7\n" : ""))
       .slab;
 }
 
