@@ -154,6 +154,11 @@ def render(out_dir, not_reproduced_path=NOT_REPRODUCED):
     plot_files = {f for f in os.listdir(plot_dir) if f.endswith(".png")} if os.path.isdir(plot_dir) else set()
     plots = case_plots([c["name"] for c in cases], plot_files)
     checks = [dict(c, case=case["name"], figure=case["figure"]) for case in cases for c in case["checks"]]
+    # Checks whose model is a numerical integral by the adaptive cell rule (rule_accuracy).
+    ruled = [c for c in checks if "rule_accuracy" in c]
+    rules = {"checks": len(ruled), "short": [c for c in ruled if c["rule_accuracy"]["unconverged"] > 0],
+             "target": max((c["rule_accuracy"]["target"] for c in ruled), default=None),
+             "worst": max((c["rule_accuracy"]["worst_rel_error"] for c in ruled), default=None)}
     models = summarize(results)
     for m in models:
         # An exact model is judged by chi^2 and z: one noisy cell near zero can
@@ -168,7 +173,7 @@ def render(out_dir, not_reproduced_path=NOT_REPRODUCED):
     env.filters["css"] = lambda status: "na" if status == "n/a" else status
     env.filters["budget"] = budget_groups
     return env.get_template(TEMPLATE).render(
-        results=results, cases=cases, checks=checks, models=models, counts=status_counts(checks),
+        results=results, cases=cases, checks=checks, models=models, counts=status_counts(checks), rules=rules,
         statuses=STATUSES, plots=plots, index=figure_index(cases, plots, plot_files),
         not_reproduced=load_not_reproduced(not_reproduced_path), spongecake=load_spongecake(out_dir),
         spongecake_methods=SPONGECAKE_METHODS)

@@ -293,3 +293,33 @@ def test_status_table_has_the_spongecake_block(copy_of):
     # network, fit, Lambertian, noise (of ms), then network and no term of the BSDF; median (90th percentile)
     assert rows[0].endswith("| 17 % (17 %) | 8 % (8 %) | 10 % (10 %) |"), rows[0]
     assert "unseen (SpongeCake Figs. 11-13)" in rows[1]
+
+
+
+def test_model_rule_accuracy_is_reported_and_a_short_rule_flagged(copy_of):
+    """Checks whose model is an adaptive integral (rule_accuracy in results.json,
+    written by mcref validate for the micrograin BRDF models) show the rule's
+    largest error estimate; integrals that stopped above the target are named
+    in the page's opening and flagged. The tiny suite's one such check
+    converged; a second record, short of its target, is added here."""
+    r = results(copy_of)
+    checks = [c for case in r["cases"] for c in case["checks"]]
+    ruled = [c for c in checks if "rule_accuracy" in c]
+    assert len(ruled) == 1 and ruled[0]["rule_accuracy"]["unconverged"] == 0
+    real = ruled[0]["rule_accuracy"]
+    p = page(copy_of)
+    worst = format(real["worst_rel_error"], ".3g")
+    assert "Model integrals: in 1 check, the model" in p and f"largest error estimate reached is {worst}." in p
+    assert "Every integral reached the target." in p and f'<td class="num">{worst}</td>' in p
+    assert "short" not in p.split("<body>")[1]
+
+    case, other = next((k["name"], c) for k in r["cases"] for c in k["checks"] if "rule_accuracy" not in c)
+    other["rule_accuracy"] = {"target": 5e-7, "integrals": 10, "unconverged": 2, "worst_rel_error": 7.9e-7, "worst_cell": 4}
+    with open(os.path.join(copy_of, "results.json"), "w") as f:
+        json.dump(r, f)
+    p = render(copy_of)
+    assert "Model integrals: in 2 checks" in p and "largest error estimate reached is 7.9e-07." in p
+    assert '<span class="short">In 1 of them some integrals stopped above the target</span>' in p
+    assert f"{case}: {other['model']} on <code>{html.escape(other['table'])}</code>, 2\nof 10, up to 7.9e-07" in p
+    assert '<td class="num short">7.9e-07</td>' in p and f'<td class="num">{worst}</td>' in p
+    assert "2 stopped above the target, the worst at model value 4" in p
