@@ -156,6 +156,53 @@ def test_evaluate_model_on_a_table():
         mcref.evaluate_model("no_such_model", tab, t.provenance["config"])
 
 
+BRDF_SMALL = """
+[geometry]
+kind = "micrograin"
+tau0 = 0.4
+beta = 1.0
+tile = 20
+
+[material.grain]
+type = "lambertian"
+albedo = 0.6
+
+[material.base]
+type = "lambertian"
+albedo = 0.5
+
+[run]
+seed = 6
+batches = 2
+
+[[measure]]
+quantity = "brdf"
+theta_i_deg = [30, 70]
+theta_o_bins = 3
+phi_bins = 4
+samples = 500
+"""
+
+
+def test_evaluate_model_reports_its_rule_accuracy():
+    """return_accuracy: the adaptive cell rule's record (as results.json's
+    rule_accuracy) for a model it evaluates; None for a fixed-rule model."""
+    t = mcref.simulate(BRDF_SMALL, seed=2)
+    config = t.provenance["config"]
+    for name in ("brdf", "brdf_albedo"):
+        tab = t[name]
+        values, acc = mcref.evaluate_model("gdist_total_union" if name == "brdf" else "gdist_albedo", tab, config,
+                                           return_accuracy=True)
+        assert np.array_equal(values, mcref.evaluate_model("gdist_total_union" if name == "brdf" else "gdist_albedo",
+                                                           tab, config), equal_nan=True)
+        assert set(acc) == {"target", "integrals", "unconverged", "worst_rel_error", "worst_cell"}
+        assert acc["target"] == 5e-7 and acc["integrals"] > 0 and 0 <= acc["worst_cell"] < values.size
+        assert acc["unconverged"] == 0 and 0 < acc["worst_rel_error"] <= acc["target"]
+    tau = mcref.simulate(TAU_PLUS, seed=3)
+    values, acc = mcref.evaluate_model("tau_plus_eq22", tau["tau_plus"], tau.provenance["config"], return_accuracy=True)
+    assert acc is None and values.shape == tuple(tau["tau_plus"].shape)
+
+
 def test_to_xarray():
     xr = pytest.importorskip("xarray")  # optional dependency
     t = mcref.simulate(TAU_PLUS, seed=3)["ndf"]

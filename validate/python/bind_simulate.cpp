@@ -138,12 +138,14 @@ void bind_simulate(py::module_& m) {
     return out;
   }, py::arg("quantity"), py::arg("kind") = "micrograin", "The suite models of a table quantity for a geometry kind.");
 
-  m.def("evaluate_model", [](const std::string& model, const Table& table, py::object config) {
+  m.def("evaluate_model", [](const std::string& model, const Table& table, py::object config, bool return_accuracy) {
     const auto [text, file] = config_text(config);
     const Experiment ex = parse_experiment(text, file);
     std::vector<double> v;
+    ModelAccuracy accuracy;
     {
       py::gil_scoped_release release;
+      const ModelAccuracyScope scope(&accuracy);
       try {
         v = evaluate_model(model, table, ex);
       } catch (const std::invalid_argument& e) {
@@ -154,12 +156,26 @@ void bind_simulate(py::module_& m) {
     for (std::size_t s : table.shape()) shape.push_back(static_cast<py::ssize_t>(s));
     py::array_t<double> a(shape);
     std::copy(v.begin(), v.end(), a.mutable_data());
-    return a;
-  }, py::arg("model"), py::arg("table"), py::arg("config"),
+    if (!return_accuracy) return py::object(a);
+    py::object info = py::none();
+    if (accuracy.integrals > 0) {  // as results.json's rule_accuracy
+      py::dict d;
+      d["target"] = accuracy.target;
+      d["integrals"] = accuracy.integrals;
+      d["unconverged"] = accuracy.unconverged;
+      d["worst_rel_error"] = accuracy.worst_error;
+      d["worst_cell"] = accuracy.worst_cell;
+      info = d;
+    }
+    return py::object(py::make_tuple(a, info));
+  }, py::arg("model"), py::arg("table"), py::arg("config"), py::arg("return_accuracy") = false,
         "A suite model (e.g. 'tau_plus_eq22', 'ndf_eq17', 'spongecake_ss_brdf', 'deon_corrected')\n"
         "on the cells of a table, as `mcref validate` evaluates it: bin averages over binned\n"
         "axes, point values on point axes. config: the experiment (dict or TOML text), e.g.\n"
-        "tables.provenance['config']. Returns an array of the table's shape.");
+        "tables.provenance['config']. Returns an array of the table's shape; with\n"
+        "return_accuracy=True, (array, accuracy): accuracy is None for models evaluated by\n"
+        "fixed rules, else the adaptive cell rule's record as in results.json's rule_accuracy\n"
+        "(target, integrals, unconverged, worst_rel_error, worst_cell: a flat index into the array).");
 }
 
 }  // namespace mcref::python
