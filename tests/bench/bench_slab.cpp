@@ -179,9 +179,11 @@ void pair(benchmark::State& state, std::string kind, bool wave, bool walks = fal
     double wall[2], cpu[2], e[2];
     for (int k = 0; k < 2; ++k) {
       const int which = (k + static_cast<int>(it)) % 2;  // side
+      const volume::SlabMedium& medium = which || walks ? *het : homogeneous;
+      const bool side_wave = wave && (which || !walks);
       const auto t0 = clock::now();
       const double c0 = process_cpu_seconds();
-      e[which] = static_cast<double>(engine_paths(which || walks ? *het : homogeneous, dirs, kPairPaths, it, which ? wave : wave && !walks));
+      e[which] = static_cast<double>(engine_paths(medium, dirs, kPairPaths, it, side_wave));
       cpu[which] = process_cpu_seconds() - c0;
       wall[which] = std::chrono::duration<double>(clock::now() - t0).count();
     }

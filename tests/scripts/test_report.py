@@ -295,7 +295,6 @@ def test_status_table_has_the_spongecake_block(copy_of):
     assert "unseen (SpongeCake Figs. 11-13)" in rows[1]
 
 
-
 def test_model_rule_accuracy_is_reported_and_a_short_rule_flagged(copy_of):
     """Checks whose model is an adaptive integral (rule_accuracy in results.json,
     written by mcref validate for the micrograin BRDF models) show the rule's
