@@ -281,8 +281,7 @@ CheckResult run_check(const Check& chk, const Table& t, const Experiment& ex, co
   }
   exclude_duplicate_channels(t, r.model_values);
   const std::vector<double> model_se = evaluate_model_stderr(chk.model, t, ex, r.model_values);
-  const std::size_t channels = !t.axes.empty() && t.axes.back().name == "channel" ? t.axes.back().size() : 1;
-  r.comparison = compare(t.values(), t.stderrs(), r.model_values, t.batches, model_se, channels);
+  r.comparison = compare(t.values(), t.stderrs(), r.model_values, t.batches, model_se, t.channels());
   r.verdict = judge(r.comparison, info->exact, suite.significance, chk.tolerance);
   return r;
 }

@@ -59,6 +59,10 @@ struct Table {
   Table(std::string name, std::string quantity, std::vector<Axis> axes);
   std::size_t cells() const { return sum.size(); }
   std::vector<std::size_t> shape() const;
+  // Colour channels: the size of the last axis if it is "channel", else 1. A
+  // path's channels are one sample, not independent cells (validate/metrics.h
+  // judges each channel's chi-squared on its own).
+  std::size_t channels() const { return !axes.empty() && axes.back().name == "channel" ? axes.back().size() : 1; }
   // Row-major flat index of a multi-index.
   std::size_t index(const std::vector<std::size_t>& idx) const;
   // Adds one batch's estimates (one per cell).

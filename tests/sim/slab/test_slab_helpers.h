@@ -72,7 +72,7 @@ inline void expect_exact(const std::vector<mcref::Table>& tables, const std::str
                          const mcref::Experiment& ex) {
   const mcref::Table& t = find(tables, table);
   const std::vector<double> m = mcref::evaluate_model(model, t, ex);
-  const mcref::Comparison c = mcref::compare(t.values(), t.stderrs(), m, t.batches);
+  const mcref::Comparison c = mcref::compare(t.values(), t.stderrs(), m, t.batches, {}, t.channels());
   const mcref::Verdict v = mcref::judge(c, true, 1e-3, 0);
   EXPECT_EQ(v.status, "pass") << table << " vs " << model << ": " << v.reason;
   EXPECT_GT(c.cells, 0u);
@@ -95,7 +95,9 @@ inline void expect_white_furnace(const std::vector<mcref::Table>& t, const mcref
 
 // Two independent simulations of the same medium: per cell, their difference
 // over the quadrature of both standard errors (batch spread), judged as an
-// exact model: p >= alpha and the Sidak |z| bound at alpha. `grey`: channel 0 only.
+// exact model: p >= alpha (each colour channel's chi2 on its own, Bonferroni
+// over them: a path's channels are one sample) and the Sidak |z| bound at
+// alpha. `grey`: channel 0 only.
 inline void expect_same(const std::vector<mcref::Table>& ta, const std::vector<mcref::Table>& tb,
                         const std::vector<std::string>& names, bool grey, double alpha = 1e-3) {
   for (const std::string& name : names) {
@@ -106,7 +108,7 @@ inline void expect_same(const std::vector<mcref::Table>& ta, const std::vector<m
       se[i] = std::hypot(a.stderr_of(i), b.stderr_of(i));
       if (grey && i % 3) diff[i] = NAN;
     }
-    const mcref::Comparison c = mcref::compare(diff, se, zero, a.batches);
+    const mcref::Comparison c = mcref::compare(diff, se, zero, a.batches, {}, a.channels());
     const mcref::Verdict verdict = mcref::judge(c, true, alpha, 0);
     EXPECT_EQ(verdict.status, "pass") << name << ": " << verdict.reason;
     EXPECT_GT(c.cells, 0u) << name;

@@ -91,7 +91,7 @@ void expect_consistent(const std::vector<Table>& analog, const std::vector<Table
         unreached = std::max(unreached, kPaths * b.value(i) * cell_measure(b, i));
       }
     }
-    const Comparison c = compare(diff, se, zero, a.batches);
+    const Comparison c = compare(diff, se, zero, a.batches, {}, a.channels());
     const Verdict verdict = judge(c, true, kAlpha, 0);
     EXPECT_EQ(verdict.status, "pass") << name << ": " << verdict.reason;
     EXPECT_GT(c.cells, 0u) << name;

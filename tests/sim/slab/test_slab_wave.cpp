@@ -3,7 +3,8 @@
 // substrate, and on stacks of 2 and 3 layers: two independent simulations (seeds 41 and 42, 10 batches of
 // 20 000 paths per incident direction), every cell of the BRDF, BTDF and
 // per-component albedo and delta tables compared through the quadrature of
-// both standard errors (RGB): p >= alpha and the Sidak |z| bound at alpha, with
+// both standard errors (RGB, each channel's chi2 on its own, Bonferroni over
+// the three: a path's channels are one sample): p >= alpha and the Sidak |z| bound at alpha, with
 // alpha = 0.01 / 74, 74 being the number of table comparisons below (a
 // family-wise false-failure rate of 1 %; at alpha = 0.001 per table, about 6 %).
 // Then the white furnace, thread-count independence and the config checks.

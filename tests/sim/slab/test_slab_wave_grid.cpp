@@ -2,7 +2,8 @@
 // the scalar walk's delta tracking (sim/slab/free_flight.cpp) on the same
 // medium: two independent simulations, every cell of the BRDF, BTDF and
 // per-component albedo and delta tables compared through the quadrature of both
-// standard errors (RGB), p >= alpha and the Sidak |z| bound at alpha, with
+// standard errors (RGB, each channel's chi2 on its own, Bonferroni over the
+// three: a path's channels are one sample), p >= alpha and the Sidak |z| bound at alpha, with
 // alpha = 0.01 / 26, 26 being the number of table comparisons below (a
 // family-wise false-failure rate of 1 %).
 //  - depth profiles (TOML): 10 batches of 20 000 paths at theta_i = 20, 70 deg
@@ -10,12 +11,8 @@
 //  - a laterally varying layer (density times 1 + 0.9 cos(2 pi x) on a unit
 //    tile of 16 x 16 voxel columns; no TOML reaches it), alone and with a
 //    linear depth profile: 10 batches of 20 000 paths at theta_i = 30, 75 deg
-//    and phi_i = 0, 90 deg (seeds 81-84), channel 0 only. (In RGB, the three
-//    channels of a path are one path, and the albedo and delta tables' channels
-//    nearly or exactly the same deviation counted three times: on a product of
-//    cosines, over 16 seed pairs, the RGB comparison failed twice (chi2/dof 2.5
-//    over 30 cells, 4.3 over 6) where channel 0 failed never, and at 20 times
-//    the paths both passed.) It fails with the cells' x and y swapped
+//    and phi_i = 0, 90 deg (seeds 81-84), channel 0 only (a grey layer: the
+//    other two are the same numbers). It fails with the cells' x and y swapped
 //    (chi2/dof 5.6 to 63); on cos(2 pi x) cos(4 pi y), where the swap averages
 //    out in these tables, it did not.
 // Then the white furnace, thread-count independence, what it rejects, and the

@@ -41,7 +41,7 @@ Verdict check_exact(const std::string& text, const std::string& table, const std
   o.quiet = true;
   const std::vector<Table> tables = simulate(ex, o);
   const Table& t = find(tables, table);
-  const Comparison c = compare(t.values(), t.stderrs(), evaluate_model(model, t, ex), t.batches);
+  const Comparison c = compare(t.values(), t.stderrs(), evaluate_model(model, t, ex), t.batches, {}, t.channels());
   return judge(c, true, 1e-3, 0);
 }
 
