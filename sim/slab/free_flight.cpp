@@ -81,7 +81,10 @@ class GridFlight final : public FreeFlight {
     double tau = -std::log1p(-rng.uniform());
     for (;;) {
       const LayerMajorants& M = m_.majorants()[p.layer];
-      const Leg leg = M.lateral > 1 ? fly_boxes(M, p, tau, rng) : fly_depth(M, p, tau, rng);
+      const std::optional<DepthProfile>& profile = m_.depth_profiles()[p.layer];
+      const Leg leg = profile                ? fly_profile(*profile, M, p, tau)
+                      : M.lateral > 1        ? fly_boxes(M, p, tau, rng)
+                                             : fly_depth(M, p, tau, rng);
       if (leg == Leg::kCollision) return Flight::kCollision;
       if (leg == Leg::kLost) return Flight::kLost;
       if (Flight exit; !cross_face(m_.layers(), p, exit)) return exit;
@@ -99,6 +102,30 @@ class GridFlight final : public FreeFlight {
   // The depth cell holding a depth (on a face: the cell below it).
   static int depth_cell(const LayerMajorants& M, double depth) {
     return static_cast<int>(std::upper_bound(M.faces.begin() + 1, M.faces.end() - 1, depth) - (M.faces.begin() + 1));
+  }
+
+  // A layer varying in depth only, with one S: exact, by inverting the optical
+  // depth sigma(w) / |w_z| times the column of rho (sim/slab/depth_profile.h);
+  // tau is the optical depth left (carried to the next layer if the photon
+  // reaches a face).
+  static Leg fly_profile(const DepthProfile& P, const LayerMajorants& M, Photon& p, double& tau) {
+    const double rate = -p.d.z, f = M.factor(p.d);
+    if (rate == 0) {  // horizontal (measure zero): rho is constant along the ray
+      const double mu = P.density(p.depth) * f;
+      if (!(mu > 0)) return Leg::kLost;
+      p.advance(tau / mu);
+      return Leg::kCollision;
+    }
+    const double per_column = f / std::fabs(rate);  // optical depth per unit of the column of rho
+    double amount = per_column > 0 ? tau / per_column : INFINITY;
+    const double depth = P.travel(p.depth, rate > 0, amount);
+    p.advance((depth - p.depth) / rate);
+    if (amount == 0) {
+      p.depth = depth;
+      return Leg::kCollision;
+    }
+    tau = per_column > 0 ? amount * per_column : tau;  // what is left, past the face
+    return Leg::kFace;
   }
 
   // A laterally uniform layer: the depth cells along the ray; tau is the

@@ -8,6 +8,8 @@
 //    probability sigma_t(x, w) / majorant, sigma_t(x, w) = rho(x) sigma(w; S(x))
 //    (sigma = 1 for non-SGGX layers); the scattering event then uses the S of
 //    that point (the layer's one S, or S(x) read from the grids where it varies).
+//    A layer varying in depth only, with one S, is flown exactly instead, by
+//    inverting its optical depth (sim/slab/depth_profile.h).
 #include <memory>
 
 #include "models/core/rng.h"

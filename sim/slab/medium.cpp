@@ -8,7 +8,8 @@ namespace mcref::volume {
 SlabMedium::SlabMedium(const SlabGeometry& g)
     : SlabMedium(g, g.grid.openvdb ? std::make_unique<DensityGrids>(g) : nullptr) {}
 
-SlabMedium::SlabMedium(const SlabGeometry& g, std::unique_ptr<DensityGrids> grids, int lateral_block, int reach)
+SlabMedium::SlabMedium(const SlabGeometry& g, std::unique_ptr<DensityGrids> grids, int lateral_block, int reach,
+                       bool depth_profiles)
     : geometry_(g), grids_(std::move(grids)) {
   double top = 0;
   for (const SlabLayer& l : g.layers) {
@@ -24,6 +25,9 @@ SlabMedium::SlabMedium(const SlabGeometry& g, std::unique_ptr<DensityGrids> grid
     majorants_ = build_majorants(*grids_, lateral_block, reach);
     voxels_ = std::make_unique<VoxelDensity>(*grids_);
     cell_bounds_ = flatten_cell_bounds(majorants_, g.grid.depth_voxels);
+    for (std::size_t k = 0; k < majorants_.size(); ++k)
+      depth_profiles_.push_back(majorants_[k].s_varies || !depth_profiles ? std::nullopt
+                                                                           : voxels_->depth_profile(static_cast<int>(k)));
   }
 }
 

@@ -14,6 +14,7 @@ VoxelDensity::VoxelDensity(const DensityGrids& g) {
   double top = 0;
   for (std::size_t k = 0; k < g.grids().size(); ++k) {
     Layer l;
+    l.top = top;
     l.bottom = top + geo.layers[k].thickness;
     l.inv_hz = nz / geo.layers[k].thickness;
     top = l.bottom;
@@ -25,6 +26,15 @@ VoxelDensity::VoxelDensity(const DensityGrids& g) {
           l.values[static_cast<std::size_t>((i * planes_ + j) * depth_planes_ + z)] = acc.getValue(openvdb::Coord(i, j, z));
     layers_.push_back(std::move(l));
   }
+}
+
+std::optional<DepthProfile> VoxelDensity::depth_profile(int k) const {
+  const Layer& l = layers_[static_cast<std::size_t>(k)];
+  const std::ptrdiff_t column = depth_planes_;  // values per column, column (0, 0) first
+  for (std::ptrdiff_t c = 1; c < planes_ * planes_; ++c)
+    if (!std::equal(l.values.begin(), l.values.begin() + column, l.values.begin() + c * column)) return std::nullopt;
+  // Planes 0 (bottom face) ... depth voxels (top face); the last stored one is read with weight 0.
+  return DepthProfile(l.top, l.bottom, std::vector<double>(l.values.begin(), l.values.begin() + column - 1));
 }
 
 }  // namespace mcref::volume

@@ -14,9 +14,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "sim/slab/density_grid.h"
+#include "sim/slab/depth_profile.h"
 
 namespace mcref::volume {
 
@@ -37,10 +39,14 @@ class VoxelDensity {
   explicit VoxelDensity(const DensityGrids& grids);
   // The density at a point of layer k (lateral coordinates anywhere: periodic).
   double density(int k, double x, double y, double depth) const;
+  // Layer k's density as a function of depth alone, if every stored column
+  // of its voxels holds the same values (the lookups then do not depend on
+  // x, y): exactly what density() reconstructs there.
+  std::optional<DepthProfile> depth_profile(int k) const;
 
  private:
   struct Layer {
-    double bottom = 0, inv_hz = 1;
+    double top = 0, bottom = 0, inv_hz = 1;
     std::vector<float> values;  // index (i * planes + j) * depth_planes + k
   };
   std::vector<Layer> layers_;
