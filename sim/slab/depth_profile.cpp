@@ -12,6 +12,17 @@ DepthProfile::DepthProfile(double top, double bottom, std::vector<double> rho)
   inv_hz_ = n / (bottom - top);
   column_.assign(rho_.size(), 0.0);
   for (std::size_t k = 1; k < rho_.size(); ++k) column_[k] = column_[k - 1] + 0.5 * (rho_[k - 1] + rho_[k]);
+  // invert()'s first guess: 4 entries per interval, equally spaced in the column.
+  const std::size_t entries = 4 * (rho_.size() - 1);
+  const int last = static_cast<int>(rho_.size()) - 2;
+  interval_of_.assign(entries, 0);
+  if (!(column_.back() > 0)) return;
+  inv_column_step_ = static_cast<double>(entries) / column_.back();
+  for (std::size_t i = 0, k = 0; i < entries; ++i) {
+    const double g = static_cast<double>(i) / inv_column_step_;
+    while (static_cast<int>(k) < last && column_[k + 1] <= g) ++k;
+    interval_of_[i] = static_cast<int>(k);
+  }
 }
 
 double DepthProfile::index(double depth) const {
@@ -29,7 +40,10 @@ double DepthProfile::density(double depth) const {
 // (the root in [0, 1]; this form has no cancellation).
 double DepthProfile::invert(double g) const {
   const std::size_t last = rho_.size() - 2;
-  const std::size_t k = std::min(last, static_cast<std::size_t>(std::upper_bound(column_.begin() + 1, column_.end(), g) - (column_.begin() + 1)));
+  // The interval: from the table's guess (the interval of a column value at most g), onwards.
+  std::size_t k = static_cast<std::size_t>(interval_of_[std::min(interval_of_.size() - 1, static_cast<std::size_t>(g * inv_column_step_))]);
+  k += k < last && column_[k + 1] <= g;  // usually enough (no branch)
+  while (k < last && column_[k + 1] <= g) ++k;  // thin intervals
   const double r = std::max(0.0, g - column_[k]), a = rho_[k], s = rho_[k + 1] - rho_[k];
   const double denom = a + std::sqrt(std::max(0.0, a * a + 2 * s * r));
   const double t = denom > 0 ? std::min(1.0, 2 * r / denom) : 0.0;

@@ -30,6 +30,9 @@ class DepthProfile {
   double top_, bottom_, hz_, inv_hz_;
   std::vector<double> rho_;
   std::vector<double> column_;  // per plane: the integral of rho from plane 0, in index units (rho x planes)
+  // The interval holding column value i * column_.back() / interval_of_.size() (for invert()).
+  std::vector<int> interval_of_;
+  double inv_column_step_ = 0;
   double index(double depth) const;  // (bottom - depth) / hz in [0, planes - 1]
   // The index u where the column reaches g (column_[0] <= g <= column_.back()).
   double invert(double g) const;

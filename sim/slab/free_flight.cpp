@@ -116,15 +116,17 @@ class GridFlight final : public FreeFlight {
       p.advance(tau / mu);
       return Leg::kCollision;
     }
-    const double per_column = f / std::fabs(rate);  // optical depth per unit of the column of rho
-    double amount = per_column > 0 ? tau / per_column : INFINITY;
+    // The column of rho per unit of optical depth, and per unit of depth the distance
+    // (divisions apart from tau's chain).
+    const double column_per_tau = std::fabs(rate) / f, inv_rate = 1 / rate;
+    double amount = f > 0 ? tau * column_per_tau : INFINITY;
     const double depth = P.travel(p.depth, rate > 0, amount);
-    p.advance((depth - p.depth) / rate);
+    p.advance((depth - p.depth) * inv_rate);
     if (amount == 0) {
       p.depth = depth;
       return Leg::kCollision;
     }
-    tau = per_column > 0 ? amount * per_column : tau;  // what is left, past the face
+    if (f > 0) tau = amount / column_per_tau;  // what is left, past the face
     return Leg::kFace;
   }
 
