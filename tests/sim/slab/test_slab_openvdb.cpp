@@ -1,4 +1,5 @@
-// The OpenVDB backend (delta tracking through density and SGGX matrix grids)
+// The OpenVDB backend (density and SGGX matrix grids; these layers vary in depth
+// at most, so their flights invert the optical depth: sim/slab/depth_profile.h)
 // against the homogeneous fast path, and a depth profile against the
 // single-scattering model at the same optical thickness (transport depends on
 // optical depth only).

@@ -1,6 +1,7 @@
 // The data-parallel slab walk (sim/slab/wave_walk.h) on OpenVDB slabs against
-// the scalar walk's delta tracking (sim/slab/free_flight.cpp) on the same
-// medium: two independent simulations, every cell of the BRDF, BTDF and
+// the scalar walk (sim/slab/free_flight.cpp: exact flights through the TOML
+// slabs' depth profiles, delta tracking through the laterally varying layer)
+// on the same medium: two independent simulations, every cell of the BRDF, BTDF and
 // per-component albedo and delta tables compared through the quadrature of both
 // standard errors (RGB, each channel's chi2 on its own, Bonferroni over the
 // three: a path's channels are one sample), p >= alpha and the Sidak |z| bound at alpha, with
