@@ -18,6 +18,8 @@
 //  slab/pair/walks/<medium> : the heterogeneous slab through the scalar walk, then
 //                     through the wave walk (counters as above: wave / scalar;
 //                     events/path_hom is the scalar walk's there).
+//  slab/pair/exact/linear : the linear profile in the scalar walk, delta-tracked
+//                     (side 0), then flown exactly (sim/slab/depth_profile.h).
 //  slab/flight/<medium> : free flights alone, 1 thread: 2^16 photons spread over
 //                     the layer (uniform in the tile and in depth, isotropic
 //                     directions) flown once each to their next collision or out,
@@ -126,11 +128,13 @@ void engine(benchmark::State& state, bool openvdb) {
   state.counters["events/path"] = static_cast<double>(events) / static_cast<double>(paths);
 }
 
-// The heterogeneous slabs of slab/pair (the same layer as slab(false)).
-std::unique_ptr<volume::SlabMedium> heterogeneous(const std::string& kind) {
-  if (kind == "linear")
-    return std::make_unique<volume::SlabMedium>(
-        slab(true, "", "profile = \"linear\"\nprofile_top = 0.5\nprofile_bottom = 1.5\n").slab);
+// The heterogeneous slabs of slab/pair (the same layer as slab(false));
+// depth_profiles = false: the linear profile delta-tracked, not flown exactly.
+std::unique_ptr<volume::SlabMedium> heterogeneous(const std::string& kind, bool depth_profiles = true) {
+  if (kind == "linear") {
+    const SlabGeometry g = slab(true, "", "profile = \"linear\"\nprofile_top = 0.5\nprofile_bottom = 1.5\n").slab;
+    return std::make_unique<volume::SlabMedium>(g, std::make_unique<volume::DensityGrids>(g), 0, 0, depth_profiles);
+  }
   const SlabGeometry g = slab(true, "lateral_voxels = 16\n").slab;
   auto grids = std::make_unique<volume::DensityGrids>(g);
   const int n = g.grid.lateral_voxels;
@@ -163,12 +167,14 @@ void report_spread(benchmark::State& state, const std::string& name, const std::
 }
 
 // Two runs back to back, the order alternating: side 0 (the homogeneous slab,
-// or with `walks` the heterogeneous one through the scalar walk) and side 1 (the
-// heterogeneous slab; through the wave walk if `wave`, side 0 too unless `walks`).
-void pair(benchmark::State& state, std::string kind, bool wave, bool walks = false) {
+// with `walks` the heterogeneous one through the scalar walk, with `tracked` the
+// heterogeneous one delta-tracked) and side 1 (the heterogeneous slab; through
+// the wave walk if `wave`, side 0 too unless `walks`).
+void pair(benchmark::State& state, std::string kind, bool wave, bool walks = false, bool tracked = false) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
   const volume::SlabMedium homogeneous(slab(false).slab);
   const std::unique_ptr<volume::SlabMedium> het = heterogeneous(kind);
+  const std::unique_ptr<volume::SlabMedium> het_tracked = tracked ? heterogeneous(kind, false) : nullptr;
   const std::vector<Vec3> dirs{spherical_direction(30 * kPi / 180, 0)};
   using clock = std::chrono::steady_clock;
   double events[2] = {0, 0};
@@ -179,7 +185,7 @@ void pair(benchmark::State& state, std::string kind, bool wave, bool walks = fal
     double wall[2], cpu[2], e[2];
     for (int k = 0; k < 2; ++k) {
       const int which = (k + static_cast<int>(it)) % 2;  // side
-      const volume::SlabMedium& medium = which || walks ? *het : homogeneous;
+      const volume::SlabMedium& medium = which || walks ? *het : tracked ? *het_tracked : homogeneous;
       const bool side_wave = wave && (which || !walks);
       const auto t0 = clock::now();
       const double c0 = process_cpu_seconds();
@@ -417,6 +423,7 @@ BENCHMARK_CAPTURE(pair, wave_linear, "linear", true)->Name("slab/pair/wave/linea
 BENCHMARK_CAPTURE(pair, wave_lateral, "lateral", true)->Name("slab/pair/wave/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(pair, walks_linear, "linear", true, true)->Name("slab/pair/walks/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(pair, walks_lateral, "lateral", true, true)->Name("slab/pair/walks/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, exact_linear, "linear", false, false, true)->Name("slab/pair/exact/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(flights, linear, "linear")->Name("slab/flight/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(flights, lateral, "lateral")->Name("slab/flight/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(floor_walk)->Name("slab/floor")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
