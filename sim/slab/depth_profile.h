@@ -9,6 +9,8 @@
 // no voxel lookups (issue #21). sim/slab/free_flight.cpp uses it for layers
 // with one SGGX matrix (or a non-SGGX phase function); VoxelDensity::
 // depth_profile tells which layers have one.
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace mcref::volume {
@@ -37,5 +39,47 @@ class DepthProfile {
   // The index u where the column reaches g (column_[0] <= g <= column_.back()).
   double invert(double g) const;
 };
+
+// (Inline: a flight's cost depends on these being inlined into it.)
+inline double DepthProfile::index(double depth) const {
+  return std::min(static_cast<double>(rho_.size() - 1), std::max(0.0, (bottom_ - depth) * inv_hz_));
+}
+
+inline double DepthProfile::density(double depth) const {
+  const double u = index(depth);
+  const std::size_t k = std::min(static_cast<std::size_t>(u), rho_.size() - 2);
+  return rho_[k] + (rho_[k + 1] - rho_[k]) * (u - static_cast<double>(k));
+}
+
+// In interval k, rho = rho_k + s t (t = u - k in [0, 1], s = rho_k+1 - rho_k), so
+// the column from plane k is rho_k t + s t^2 / 2 = R: t = 2 R / (rho_k + sqrt(rho_k^2 + 2 s R))
+// (the root in [0, 1]; this form has no cancellation).
+inline double DepthProfile::invert(double g) const {
+  const std::size_t last = rho_.size() - 2;
+  // The interval: from the table's guess (the interval of a column value at most g), onwards.
+  std::size_t k = static_cast<std::size_t>(interval_of_[std::min(interval_of_.size() - 1, static_cast<std::size_t>(g * inv_column_step_))]);
+  k += k < last && column_[k + 1] <= g;  // usually enough (no branch)
+  while (k < last && column_[k + 1] <= g) ++k;  // thin intervals
+  const double r = std::max(0.0, g - column_[k]), a = rho_[k], s = rho_[k + 1] - rho_[k];
+  const double denom = a + std::sqrt(std::max(0.0, a * a + 2 * s * r));
+  const double t = denom > 0 ? std::min(1.0, 2 * r / denom) : 0.0;
+  return static_cast<double>(k) + t;
+}
+
+inline double DepthProfile::travel(double depth, bool down, double& amount) const {
+  const double u0 = index(depth);
+  const std::size_t k = std::min(static_cast<std::size_t>(u0), rho_.size() - 2);
+  const double t = u0 - static_cast<double>(k);
+  const double g0 = column_[k] + (rho_[k] + 0.5 * (rho_[k + 1] - rho_[k]) * t) * t;  // the column up to u0
+  const double need = amount * inv_hz_;
+  // Deeper is towards plane 0 (the column decreasing), shallower towards the top plane.
+  const double g = down ? g0 - need : g0 + need;
+  if (down ? !(g > 0) : !(g < column_.back())) {
+    amount = (need - (down ? g0 : column_.back() - g0)) * hz_;
+    return down ? bottom_ : top_;
+  }
+  amount = 0;
+  return bottom_ - invert(g) * hz_;
+}
 
 }  // namespace mcref::volume
