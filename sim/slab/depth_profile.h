@@ -28,6 +28,16 @@ class DepthProfile {
   // is still to go; otherwise sets `amount` to 0.
   double travel(double depth, bool down, double& amount) const;
 
+  // The tables travel() reads, for the data-parallel walk's own flights
+  // (sim/slab/wave_walk.cpp): rho and the column per plane, and the first-guess
+  // interval per column step (column value i / inv_column_step()).
+  const std::vector<double>& rho() const { return rho_; }
+  const std::vector<double>& column() const { return column_; }
+  const std::vector<int>& interval_of() const { return interval_of_; }
+  double inv_column_step() const { return inv_column_step_; }
+  double hz() const { return hz_; }  // depth per interval
+  double inv_hz() const { return inv_hz_; }
+
  private:
   double top_, bottom_, hz_, inv_hz_;
   std::vector<double> rho_;

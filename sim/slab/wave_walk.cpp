@@ -13,6 +13,7 @@
 #include "models/sggx/flake_phase.h"
 #include "models/sggx/hg_phase.h"
 #include "models/sggx/sggx_distribution.h"
+#include "sim/slab/depth_profile.h"
 #include "sim/slab/substrate.h"
 #include "sim/slab/voxel_density.h"
 
@@ -332,6 +333,104 @@ void fly_grid(Lanes& L, bool in_b, int n, const Stack& l, const Grid& g, const f
   if (!g.lateral && !g.depth) fly_grid_uniform(L, in_b, n, l, g, lo, hi, depth_cell);
 }
 
+// OpenVDB stacks whose layers all vary in depth only, each with one S (every
+// stack a TOML describes): exact flights, as free_flight.cpp's fly_profile
+// (sim/slab/depth_profile.h). The column of rho to go is tau |w_z| / sigma(w);
+// from the start's column, the interval where the column reaches its target is
+// the table's guess or the one after it (else, for thin intervals, the scalar
+// pass flies the lane: kDeferred, the column to go in Lateral::v); then one
+// quadratic. No null collisions, no voxel lookups. A path that reaches an inner
+// face crosses it in the scalar pass and draws a new exponential there (the
+// same law: it is memoryless). Layer k's planes (rho, column) and table
+// entries start at plane0[k] and entry0[k] of the flat tables passed beside this.
+struct Profiles {
+  double plane0[kMaxLayers], entry0[kMaxLayers], entries[kMaxLayers];
+  double last[kMaxLayers];      // the last interval's index (planes - 2)
+  double inv_step[kMaxLayers];  // table entries per unit of column (index units: rho x planes)
+  double total[kMaxLayers];     // the layer's whole column
+  double hz[kMaxLayers], inv_hz[kMaxLayers];
+};
+constexpr double kDeferred = 6;  // (a flight outcome)
+
+template <bool kSggx, bool kB, int K>
+inline void fly_profile_lanes(Lanes& L, int n, const Stack& stack, const Profiles& profiles,
+                              const double* __restrict rho, const double* __restrict column,
+                              const int* __restrict interval_of) {
+  const Stack l = stack;
+  const Profiles q = profiles;
+  Paths& p = L.paths<kB>();
+  Streams& r = L.r;
+  Steps& st = L.st;
+  Lateral& pos = L.pos;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 d{p.dx[i], p.dy[i], p.dz[i]};
+    const double k = p.layer[i];
+    const double top = pick<K>(l.top, k), bottom = pick<K>(l.bottom, k), last = pick<K>(q.last, k);
+    const double plane0 = pick<K>(q.plane0, k), entry0 = pick<K>(q.entry0, k), entries = pick<K>(q.entries, k);
+    const double inv_step = pick<K>(q.inv_step, k), total = pick<K>(q.total, k);
+    const double hz = pick<K>(q.hz, k), inv_hz = pick<K>(q.inv_hz, k);
+    double f = 1;  // sigma(w)
+    if constexpr (kSggx) {
+      const sggx::Mat3 S = pick_matrix<K>(l.S, k);
+      f = std::sqrt(std::max(0.0, sggx::quadratic_form(S, d)));  // sggx::projected_area
+    }
+    const double tau = -simd_log(2 - r.one_to_two(i));  // -log(1 - u), 1 - u in (0, 1]
+    const double rate = -d.z, depth = p.depth[i];      // d(depth)/ds
+    // (Flags as doubles, and two-way selects: booleans combined, or a select of
+    // more values, stop the vectoriser; loads on no condition, for the same reason.)
+    const double down = rate > 0 ? 1.0 : 0.0, face = rate > 0 ? bottom : top;
+    // The column to go, in rho x depth (inf where sigma(w) = 0), and in index units.
+    const double amount = tau * std::fabs(rate) / f, need = amount * inv_hz;
+    // The start: index u0 (plane 0 on the bottom face), in interval j0; its column g0.
+    const double u0 = std::min(last + 1, std::max(0.0, (bottom - depth) * inv_hz));
+    const double j0 = std::min(last, std::floor(u0)), t0 = u0 - j0;
+    const int c0 = static_cast<int>(plane0 + j0);
+    const double a0 = rho[c0], s0 = rho[c0 + 1] - a0;
+    const double g0 = column[c0] + (a0 + 0.5 * s0 * t0) * t0;
+    // The target (deeper is towards plane 0), clamped to the layer for the lanes that leave it.
+    const double g = g0 + (1 - 2 * down) * need;
+    const double exits = down * (g > 0 ? 0.0 : 1.0) + (1 - down) * (g < total ? 0.0 : 1.0);
+    const double gc = std::min(total, std::max(0.0, g));
+    // Its interval: the table's guess, or the one after it (j <= last).
+    double j = interval_of[static_cast<int>(entry0 + std::min(entries - 1, std::floor(gc * inv_step)))];
+    const double guess_end = column[static_cast<int>(plane0 + j) + 1];
+    j += (j < last ? 1.0 : 0.0) * (guess_end <= gc ? 1.0 : 0.0);
+    const int c = static_cast<int>(plane0 + j);
+    const double end = column[c + 1];
+    const double further = (j < last ? 1.0 : 0.0) * (end <= gc ? 1.0 : 0.0);  // thin intervals: the scalar pass
+    // In interval j, rho = a + s t: the column from plane j is a t + s t^2 / 2 = R (DepthProfile::invert).
+    const double a = rho[c], s = rho[c + 1] - a, rr = std::max(0.0, gc - column[c]);
+    const double denom = a + std::sqrt(std::max(0.0, a * a + 2 * s * rr));
+    const double t = std::min(1.0, 2 * rr / std::max(denom, 0x1p-1022));
+    // Horizontal (measure zero): rho is constant along the ray; a collision unless it is 0.
+    const double flat = (a0 + s0 * t0) * f > 0 ? kCollision : kLost;
+    double event = further > 0 ? kDeferred : kCollision, to = further > 0 ? depth : bottom - (j + t) * hz;
+    event = exits > 0 ? kTop + down * (kBottom - kTop) : event;
+    to = exits > 0 ? face : to;
+    event = rate == 0 ? flat : event;
+    to = rate == 0 ? depth : to;
+    p.depth[i] = to, pos.v[i] = amount;
+    st.event[i] = event;
+  }
+}
+
+template <int K>
+inline void fly_profile_stack(Lanes& L, bool in_b, int n, const Stack& l, const Profiles& q, const double* rho,
+                              const double* column, const int* interval_of) {
+  const bool sggx = l.phase == SlabPhase::kSggxSurface || l.phase == SlabPhase::kSggxFiber;
+  if (sggx && in_b) fly_profile_lanes<true, true, K>(L, n, l, q, rho, column, interval_of);
+  if (sggx && !in_b) fly_profile_lanes<true, false, K>(L, n, l, q, rho, column, interval_of);
+  if (!sggx && in_b) fly_profile_lanes<false, true, K>(L, n, l, q, rho, column, interval_of);
+  if (!sggx && !in_b) fly_profile_lanes<false, false, K>(L, n, l, q, rho, column, interval_of);
+}
+
+MCREF_WAVE_STAGE void fly_profiles(Lanes& L, bool in_b, int n, const Stack& l, const Profiles& q, const double* rho,
+                                   const double* column, const int* interval_of) {
+  if (l.layers == 1) fly_profile_stack<1>(L, in_b, n, l, q, rho, column, interval_of);
+  else if (l.layers == 2) fly_profile_stack<2>(L, in_b, n, l, q, rho, column, interval_of);
+  else fly_profile_stack<kMaxLayers>(L, in_b, n, l, q, rho, column, interval_of);
+}
+
 // The phase-function event of every lane that collided, as walk() does it
 // (order, first class, weight, direction, roulette), from `in` into `out`;
 // the other lanes are copied. The draws are made for every lane, and unused
@@ -498,6 +597,25 @@ std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi
     }
     g.last = static_cast<double>(bounds.lo.size() - 1);
   }
+  // Stacks of depth profiles only (sim/slab/depth_profile.h): their tables, flat.
+  const std::vector<std::optional<DepthProfile>>& dp = medium.depth_profiles();
+  const bool exact = grid && std::all_of(dp.begin(), dp.end(), [](const auto& o) { return o.has_value(); });
+  Profiles q{};
+  std::vector<double> profile_rho, profile_column;
+  std::vector<int> profile_interval;
+  if (exact)
+    for (int k = 0; k < l.layers; ++k) {
+      const DepthProfile& P = *dp[k];
+      q.plane0[k] = static_cast<double>(profile_rho.size());
+      q.entry0[k] = static_cast<double>(profile_interval.size());
+      q.entries[k] = static_cast<double>(P.interval_of().size());
+      q.last[k] = static_cast<double>(P.rho().size() - 2);
+      q.inv_step[k] = P.inv_column_step(), q.total[k] = P.column().back();
+      q.hz[k] = P.hz(), q.inv_hz[k] = P.inv_hz();
+      profile_rho.insert(profile_rho.end(), P.rho().begin(), P.rho().end());
+      profile_column.insert(profile_column.end(), P.column().begin(), P.column().end());
+      profile_interval.insert(profile_interval.end(), P.interval_of().begin(), P.interval_of().end());
+    }
   const auto L = std::make_unique<Lanes>();
   Streams& r = L->r;
   Steps& st = L->st;
@@ -515,7 +633,17 @@ std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi
   for (int i = 0; i < n; ++i) start(L->a, i);
   std::uint64_t started = static_cast<std::uint64_t>(n), events = 0;
   while (n > 0) {
-    if (grid) {
+    if (exact) {
+      fly_profiles(*L, in_b, n, l, q, profile_rho.data(), profile_column.data(), profile_interval.data());
+      Paths& p = in_b ? L->b : L->a;
+      for (int i = 0; i < n; ++i)  // flights whose interval the stage did not reach
+        if (st.event[i] == kDeferred) {
+          const bool down = p.dz[i] < 0;
+          double amount = pos.v[i];
+          p.depth[i] = dp[static_cast<int>(p.layer[i])]->travel(p.depth[i], down, amount);
+          st.event[i] = amount == 0 ? kCollision : down ? kBottom : kTop;
+        }
+    } else if (grid) {
       fly_grid(*L, in_b, n, l, g, bounds.lo.data(), bounds.hi.data(), bounds.depth_cell.data());
       const Paths& p = in_b ? L->b : L->a;
       for (int i = 0; i < n; ++i)  // tentative collisions the cells' bounds left open

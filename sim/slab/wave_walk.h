@@ -16,7 +16,10 @@
 // parameters by selects; a path crosses an inner face in the scalar pass (the
 // flight ends there and the next one starts afresh: exact, the exponential
 // being memoryless). Layers are homogeneous, or OpenVDB grids whose SGGX
-// matrix is the same throughout each layer (any density): delta tracking
+// matrix is the same throughout each layer (any density). Where every layer's
+// density varies in depth only (every stack a TOML describes), flights are
+// exact, by inverting the optical depth as the scalar walk does
+// (sim/slab/depth_profile.h), in the vector stage. Otherwise: delta tracking
 // (Woodcock 1965) against the layer's largest cell majorant, a tentative
 // collision decided by its cell's bounds (sim/slab/majorant_grid.h) and, where
 // they leave it open, by the voxels in the scalar code; a lane tracks its
