@@ -80,8 +80,8 @@ struct Streams {
 };
 
 // OpenVDB layers: the lateral position in the tile, [0, tile), and a tentative
-// collision's acceptance draw (kLookup lanes). Not double-buffered: the phase
-// events leave them as they are.
+// collision's acceptance draw (kLookup lanes), or the column still to go
+// (kDeferred lanes). Not double-buffered: the phase events leave them as they are.
 struct Lateral {
   alignas(64) double x[N], y[N], v[N];
   void move(int from, int to) { x[to] = x[from], y[to] = y[from]; }
