@@ -1,7 +1,7 @@
 #pragma once
 // The majorant cells' bounds of every layer of an OpenVDB slab
 // (sim/slab/majorant_grid.h) in one flat table, for the data-parallel walk's
-// lookups (sim/slab/wave_walk.cpp), built once per medium:
+// lookups (sim/slab/wave_grid_flights.cpp), built once per medium:
 //  - lo and hi per cell, in float rounded outward (so still bounds of the
 //    density: lo <= rho(x) <= hi in the cell), layer k's cells from offset[k],
 //    in majorant_grid.h's order;

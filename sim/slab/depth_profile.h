@@ -29,7 +29,7 @@ class DepthProfile {
   double travel(double depth, bool down, double& amount) const;
 
   // The tables travel() reads, for the data-parallel walk's own flights
-  // (sim/slab/wave_walk.cpp): rho and the column per plane, and the first-guess
+  // (sim/slab/wave_grid_flights.cpp): rho and the column per plane, and the first-guess
   // interval per column step (column value i / inv_column_step()).
   const std::vector<double>& rho() const { return rho_; }
   const std::vector<double>& column() const { return column_; }
