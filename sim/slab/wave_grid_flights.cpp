@@ -33,11 +33,7 @@ inline void fly_grid_lanes(Lanes& L, int n, const Stack& stack, const Grid& grid
     const double rho_max = pick<K>(l.density, k), top = pick<K>(l.top, k), bottom = pick<K>(l.bottom, k);
     const double offset = pick<K>(g.offset, k), depth_offset = pick<K>(g.depth_offset, k), m = pick<K>(g.m, k);
     const double inv_cell = pick<K>(g.inv_cell, k), inv_hz = pick<K>(g.inv_hz, k);
-    double mu = rho_max;
-    if constexpr (kSggx) {
-      const sggx::Mat3 S = pick_matrix<K>(l.S, k);
-      mu *= std::sqrt(std::max(0.0, sggx::quadratic_form(S, d)));  // sggx::projected_area
-    }
+    const double mu = rho_max * sigma_of<kSggx, K>(l, k, d);
     const double rate = -d.z;  // d(depth)/ds
     // (Divisions once per step, not per attempt.)
     const double face = rate > 0 ? bottom : top, inv_rate = 1 / rate, inv_mu = 1 / mu;
@@ -143,11 +139,7 @@ inline void fly_profile_lanes(Lanes& L, int n, const Stack& stack, const Profile
     const double plane0 = pick<K>(q.plane0, k), entry0 = pick<K>(q.entry0, k), entries = pick<K>(q.entries, k);
     const double inv_step = pick<K>(q.inv_step, k), total = pick<K>(q.total, k);
     const double hz = pick<K>(q.hz, k), inv_hz = pick<K>(q.inv_hz, k);
-    double f = 1;  // sigma(w)
-    if constexpr (kSggx) {
-      const sggx::Mat3 S = pick_matrix<K>(l.S, k);
-      f = std::sqrt(std::max(0.0, sggx::quadratic_form(S, d)));  // sggx::projected_area
-    }
+    const double f = sigma_of<kSggx, K>(l, k, d);
     const double tau = -simd_log(2 - r.one_to_two(i));  // -log(1 - u), 1 - u in (0, 1]
     const double rate = -d.z, depth = p.depth[i];      // d(depth)/ds
     // (Flags as doubles, and two-way selects: booleans combined, or a select of

@@ -3,6 +3,8 @@
 // flight in structure-of-arrays form, one per lane, their random streams and
 // step outcomes, the layer stack the stages read by selects, and what the
 // stages need to vectorise (GCC 12).
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -129,6 +131,16 @@ inline sggx::Mat3 pick_matrix(const double (&m)[9][kMaxLayers], double layer) {
 #pragma GCC unroll 9
   for (int e = 0; e < 9; ++e) r.m[e / 3][e % 3] = pick<K>(m[e], layer);
   return r;
+}
+
+// sigma(w; S) of the lane's layer (SpongeCake Eq. 3, sggx::projected_area); 1
+// for the other phase functions (sigma_t = rho).
+template <bool kSggx, int K>
+inline double sigma_of(const Stack& l, double layer, Vec3 w) {
+  if constexpr (kSggx)
+    return std::sqrt(std::max(0.0, sggx::quadratic_form(pick_matrix<K>(l.S, layer), w)));
+  else
+    return 1.0;
 }
 
 }  // namespace mcref::volume::wave

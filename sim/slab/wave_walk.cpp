@@ -61,11 +61,7 @@ inline void fly_lanes(Lanes& L, int n, const Stack& stack) {
     const double k = p.layer[i];
     const double tau = -simd_log(2 - r.one_to_two(i));  // -log(1 - u), 1 - u in (0, 1]
     const double density = pick<K>(l.density, k), top = pick<K>(l.top, k), bottom = pick<K>(l.bottom, k);
-    double mu = density;
-    if constexpr (kSggx) {
-      const sggx::Mat3 S = pick_matrix<K>(l.S, k);
-      mu *= std::sqrt(std::max(0.0, sggx::quadratic_form(S, d)));  // sggx::projected_area
-    }
+    const double mu = density * sigma_of<kSggx, K>(l, k, d);
     const double rate = -d.z, depth = p.depth[i];  // d(depth)/ds
     const double dist = rate > 0 ? (bottom - depth) / rate : rate < 0 ? (top - depth) / rate : INFINITY;
     const bool collide = tau < mu * dist;
