@@ -27,6 +27,10 @@ class DepthProfile {
   // layer comes first, returns that face's depth and leaves in `amount` what
   // is still to go; otherwise sets `amount` to 0.
   double travel(double depth, bool down, double& amount) const;
+  // The column integral of rho from `depth` to the bottom face (down) or the
+  // top face (in density x depth): the optical depth to that face along w is
+  // sigma(w) / |w_z| times it (the next-event estimators, sim/slab/escape.h).
+  double column_to_face(double depth, bool down) const;
 
   // The tables travel() reads, for the data-parallel walk's own flights
   // (sim/slab/wave_grid_flights.cpp): rho and the column per plane, and the first-guess
@@ -46,6 +50,7 @@ class DepthProfile {
   std::vector<int> interval_of_;
   double inv_column_step_ = 0;
   double index(double depth) const;  // (bottom - depth) / hz in [0, planes - 1]
+  double column_up_to(double u) const;  // the column from plane 0 to index u, in index units
   // The index u where the column reaches g (column_[0] <= g <= column_.back()).
   double invert(double g) const;
 };
@@ -76,11 +81,19 @@ inline double DepthProfile::invert(double g) const {
   return static_cast<double>(k) + t;
 }
 
+inline double DepthProfile::column_up_to(double u) const {
+  const std::size_t k = std::min(static_cast<std::size_t>(u), rho_.size() - 2);
+  const double t = u - static_cast<double>(k);
+  return column_[k] + (rho_[k] + 0.5 * (rho_[k + 1] - rho_[k]) * t) * t;
+}
+
+inline double DepthProfile::column_to_face(double depth, bool down) const {
+  const double g0 = column_up_to(index(depth));
+  return (down ? g0 : column_.back() - g0) * hz_;
+}
+
 inline double DepthProfile::travel(double depth, bool down, double& amount) const {
-  const double u0 = index(depth);
-  const std::size_t k = std::min(static_cast<std::size_t>(u0), rho_.size() - 2);
-  const double t = u0 - static_cast<double>(k);
-  const double g0 = column_[k] + (rho_[k] + 0.5 * (rho_[k + 1] - rho_[k]) * t) * t;  // the column up to u0
+  const double g0 = column_up_to(index(depth));
   const double need = amount * inv_hz_;
   // Deeper is towards plane 0 (the column decreasing), shallower towards the top plane.
   const double g = down ? g0 - need : g0 + need;

@@ -10,7 +10,12 @@
 // (An analog walk conserves weight exactly, so R + T including the delta lobe
 // would be 1 with zero variance: nothing to test statistically.)
 #include "sim/experiment/simulate_kinds.h"
+
+#include <stdexcept>
+#include <string>
+
 #include "sim/parallel/run_chunks.h"
+#include "sim/slab/escape.h"
 #include "sim/slab/free_flight.h"
 #include "sim/slab/medium.h"
 #include "sim/slab/walk.h"
@@ -57,6 +62,8 @@ BatchLoop::Tables slab_tables(const Experiment& ex) {
 
 std::vector<Table> simulate_slab(const Experiment& ex, const BatchLoop& loop) {
   const volume::SlabMedium medium(ex.slab);
+  if (ex.slab.estimator != SlabEstimator::kAnalog)
+    if (const std::string why = volume::escape_unsupported(medium); !why.empty()) throw std::invalid_argument(why);
   BatchLoop::Tables tables = slab_tables(ex);
   loop.run(ex.run.batches, tables, [&](int b, BatchLoop::Tables& into) {
     for (std::size_t k = 0; k < ex.measures.size(); ++k) {

@@ -9,7 +9,7 @@
 //   delta_transmission = true                   record the unscattered transmission
 //   walk = "scalar" | "wave"                    path by path, or data-parallel (up to 4 layers, either backend)
 //   estimator = "analog" | "next_event" | "next_event_mis"   escapes tallied where they happen, or by
-//                                               their probability at every event (scalar walk, homogeneous)
+//                                               their probability at every event (scalar walk)
 //   backend = "homogeneous" | "openvdb"         free-flight sampling (default homogeneous)
 //   tile = 1.0, lateral_voxels = 4, depth_voxels = 32   openvdb grid
 //   [[geometry.layer]]                           top to bottom, at least one
@@ -142,10 +142,8 @@ void read_slab_geometry(TomlReader& g, Experiment& e) {
   s.estimator = estimator == "analog"       ? SlabEstimator::kAnalog
                 : estimator == "next_event" ? SlabEstimator::kNextEvent
                                             : SlabEstimator::kNextEventMis;
-  if (s.estimator != SlabEstimator::kAnalog && (s.wave_walk || s.grid.openvdb))
-    g.fail("estimator", "\"" + estimator + "\" needs " +
-                            (s.wave_walk ? "walk = \"scalar\" (the wave walk has no next-event estimator)"
-                                         : "backend = \"homogeneous\" (escape probabilities through OpenVDB grids are not implemented)"));
+  if (s.estimator != SlabEstimator::kAnalog && s.wave_walk)
+    g.fail("estimator", "\"" + estimator + "\" needs walk = \"scalar\" (the wave walk has no next-event estimator)");
   for (std::size_t i = 0; i < s.layers.size(); ++i)
     if (!s.grid.openvdb && s.layers[i].profile.kind != DensityProfile::Kind::kConstant)
       throw ConfigError(e.file, "geometry.layer." + std::to_string(i) + ".profile",

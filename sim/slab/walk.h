@@ -39,7 +39,7 @@ struct WalkSettings {
   int max_order = 0;             // 0: unlimited
   bool delta_transmission = true;
   int roulette_from = 2;         // Russian roulette once order >= this
-  SlabEstimator estimator = SlabEstimator::kAnalog;  // (above); next event: homogeneous layers only
+  SlabEstimator estimator = SlabEstimator::kAnalog;  // (above); next event: see escape_unsupported()
 };
 
 inline constexpr int kClassVolume = 0, kClassSubstrate = 1;

@@ -21,6 +21,12 @@ are large), so `paired` is the fairer gain: per repetition pair, the median over
 the cells both reach of analog's rse^2 x cpu over the other's; median and range.
 
   tests/bench/estimator_efficiency.py build/mcref --entries 1:357 2:220 2:2279 2:4423 --reps 5
+
+--experiments runs whole experiment files instead (their own directions and paths), e.g.
+the OpenVDB depth-profile slab:
+
+  tests/bench/estimator_efficiency.py build/mcref --experiments validate/experiments/slab_openvdb_profile.toml \
+      --estimators analog next_event next_event_mis --reps 5
 """
 import argparse
 import os
@@ -90,7 +96,9 @@ def span(x):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("mcref")
-    ap.add_argument("--entries", nargs="+", required=True, help="LAYERS:INDEX, e.g. 1:357 2:220")
+    which = ap.add_mutually_exclusive_group(required=True)
+    which.add_argument("--entries", nargs="+", help="LAYERS:INDEX, e.g. 1:357 2:220")
+    which.add_argument("--experiments", nargs="+", help="experiment TOML files, run as they are")
     ap.add_argument("--estimators", nargs="+", default=["analog", "next_event"],
                     help="values of [geometry] estimator, or KEY=VALUE for another [geometry] key (e.g. walk=wave)")
     ap.add_argument("--reps", type=int, default=5)
@@ -106,14 +114,18 @@ def main():
         settings = direction_settings(base, args.stride_theta, args.stride_phi)
         open(os.path.join(work, "spongecake_base.toml"), "w").write(
             re.sub(r"^samples = \d+$", "samples = 1", base, flags=re.M))
-        print(f"# directions: every {args.stride_theta}th theta_i, every {args.stride_phi}th phi_i; "
-              f"{args.reps} alternating repetitions, 1 thread; error = median relative stderr")
+        directions = (f"every {args.stride_theta}th theta_i, every {args.stride_phi}th phi_i" if args.entries
+                      else "the experiments' own")
+        print(f"# directions: {directions}; {args.reps} alternating repetitions, 1 thread; error = median relative stderr")
         print("entry,estimator,cpu,ms_cells,ms,total,ms2_cpu,total2_cpu,gain_ms,gain_ms_range,gain_total,"
               "gain_total_range,paired_ms,paired_ms_range,paired_total,paired_total_range")
-        for spec in args.entries:
-            layers, index = spec.split(":")
-            exp = os.path.join(work, "entry.toml")
-            open(exp, "w").write(entry_config(args.mcref, work, layers, int(index)))
+        for spec in args.entries or args.experiments:
+            if args.entries:
+                layers, index = spec.split(":")
+                exp = os.path.join(work, "entry.toml")
+                open(exp, "w").write(entry_config(args.mcref, work, layers, int(index)))
+            else:
+                exp = os.path.abspath(spec)
             runs = {e: [] for e in args.estimators}
             cells = {e: [] for e in args.estimators}
             for rep in range(args.reps):
@@ -122,7 +134,7 @@ def main():
                     out = os.path.join(work, "run.h5")
                     key, value = est.split("=") if "=" in est else ("estimator", est)
                     _, _, cpu = timed_run([args.mcref, "simulate", exp, "-o", out, "--threads", "1", "--quiet",
-                                           "--set", f"geometry.{key}=\"{value}\""] + settings)
+                                           "--set", f"geometry.{key}=\"{value}\""] + (settings if args.entries else []))
                     ms, total = errors(out)
                     runs[est].append((cpu, np.nanmedian(ms), np.nanmedian(total), int(np.sum(ms > 0))))
                     cells[est].append((cpu, ms, total))
