@@ -172,7 +172,9 @@ TEST(NextEvent, EscapeProbabilityThroughDepthProfiles) {
 }
 
 // A layer whose density varies laterally has no column: the estimators refuse it,
-// naming the layer, before any path (simulate) and in escape_probability itself.
+// naming the layer (simulate_slab asks before any path; no TOML builds such a
+// layer, so this test builds one by editing the grids), and escape_probability
+// throws rather than return a wrong value.
 TEST(NextEvent, RefusesLaterallyVaryingLayers) {
   const SlabGeometry g = slab_test::lateral_grid_experiment().slab;
   auto grids = std::make_unique<volume::DensityGrids>(g);
