@@ -89,7 +89,7 @@ inline double DepthProfile::column_up_to(double u) const {
 
 inline double DepthProfile::column_to_face(double depth, bool down) const {
   const double g0 = column_up_to(index(depth));
-  return (down ? g0 : column_.back() - g0) * hz_;
+  return std::max(0.0, down ? g0 : column_.back() - g0) * hz_;  // (on the top face: -1 ulp at most)
 }
 
 inline double DepthProfile::travel(double depth, bool down, double& amount) const {

@@ -18,7 +18,9 @@ double escape_probability(const SlabMedium& medium, int layer, double depth, Vec
     if (grids) {
       const std::optional<DepthProfile>& profile = medium.depth_profiles()[k];
       if (!profile) throw std::invalid_argument(escape_unsupported(medium));
-      tau += l.phase->sigma(d) * profile->column_to_face(from, d.z < 0) * inv_mu;
+      // sigma(d) as the layer's free flights take it (the grids' S).
+      if (const double column = profile->column_to_face(from, d.z < 0); column > 0)
+        tau += medium.majorants()[k].factor(d) * column * inv_mu;
       continue;
     }
     const double path = std::fabs((d.z > 0 ? l.top : l.bottom) - from) * inv_mu;

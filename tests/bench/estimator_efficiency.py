@@ -74,7 +74,7 @@ def errors(path):
     import h5py
     ms, total = [], []
     with h5py.File(path, "r") as f:
-        for hemi in ("brdf", "brdf_btdf"):
+        for hemi in (h for h in ("brdf", "brdf_btdf") if h in f):  # (no transmission above a substrate)
             v = sum(f[f"{hemi}_{o}"]["value"][()] for o in ORDERS)
             se = np.sqrt(sum(f[f"{hemi}_{o}"]["stderr"][()] ** 2 for o in ORDERS))
             ms.append(np.where(v > 0, se / np.where(v > 0, v, 1), np.nan).ravel())
@@ -108,12 +108,14 @@ def main():
     src = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "validate", "datasets")
     work = tempfile.mkdtemp(prefix="mcref_estimators_")
     try:
-        for name, _ in DATASETS.values():
-            shutil.copy(os.path.join(src, name), work)
-        base = open(os.path.join(src, "spongecake_base.toml")).read()
-        settings = direction_settings(base, args.stride_theta, args.stride_phi)
-        open(os.path.join(work, "spongecake_base.toml"), "w").write(
-            re.sub(r"^samples = \d+$", "samples = 1", base, flags=re.M))
+        settings = []
+        if args.entries:
+            for name, _ in DATASETS.values():
+                shutil.copy(os.path.join(src, name), work)
+            base = open(os.path.join(src, "spongecake_base.toml")).read()
+            settings = direction_settings(base, args.stride_theta, args.stride_phi)
+            open(os.path.join(work, "spongecake_base.toml"), "w").write(
+                re.sub(r"^samples = \d+$", "samples = 1", base, flags=re.M))
         directions = (f"every {args.stride_theta}th theta_i, every {args.stride_phi}th phi_i" if args.entries
                       else "the experiments' own")
         print(f"# directions: {directions}; {args.reps} alternating repetitions, 1 thread; error = median relative stderr")
@@ -134,7 +136,7 @@ def main():
                     out = os.path.join(work, "run.h5")
                     key, value = est.split("=") if "=" in est else ("estimator", est)
                     _, _, cpu = timed_run([args.mcref, "simulate", exp, "-o", out, "--threads", "1", "--quiet",
-                                           "--set", f"geometry.{key}=\"{value}\""] + (settings if args.entries else []))
+                                           "--set", f"geometry.{key}=\"{value}\""] + settings)
                     ms, total = errors(out)
                     runs[est].append((cpu, np.nanmedian(ms), np.nanmedian(total), int(np.sum(ms > 0))))
                     cells[est].append((cpu, ms, total))
