@@ -12,6 +12,7 @@
 #include "sim/experiment/config_error.h"
 #include "sim/micrograin/estimator.h"
 #include "sim/micrograin/micrograin_walk.h"
+#include "sim/tally/brdf_batch.h"
 
 namespace mcref {
 
@@ -51,17 +52,18 @@ Estimator micrograin_brdf_estimator() {
   e.add_batch = [](const MicrograinField& f, const Experiment& ex, const Measure& m, const StreamKey& key,
                    std::vector<Table>& tables) {
     const BrdfLayout l = layout_of(m, f.geometry());
-    std::vector<std::vector<double>> sums;
+    BrdfBatch batch(l, static_cast<double>(m.samples), tables);
     std::uint64_t dir = 0;
     for (double theta : m.theta_i)
       for (double phi : m.phi_i) {
         const Vec3 wi = incident_direction(theta, phi);
-        sums.push_back(run_chunks(m.samples, l.sums_size(), key.with(dir++), [&](Rng& rng, std::uint64_t n, Sums& s) {
+        batch.add(dir, run_chunks(m.samples, l.sums_size(), key.with(dir), [&](Rng& rng, std::uint64_t n, Sums& s) {
           BrdfAccumulator acc(l, phi, s);
           for (std::uint64_t k = 0; k < n; ++k) trace_brdf_path(f, ex.materials, wi, m.max_order, rng, acc);
         }));
+        ++dir;
       }
-    add_brdf_batch(sums, static_cast<double>(m.samples), l, tables);
+    batch.close();
   };
   return e;
 }

@@ -20,6 +20,7 @@
 #include "sim/slab/medium.h"
 #include "sim/slab/walk.h"
 #include "sim/slab/wave_walk.h"
+#include "sim/tally/brdf_batch.h"
 
 namespace mcref {
 
@@ -74,14 +75,15 @@ std::vector<Table> simulate_slab(const Experiment& ex, const BatchLoop& loop) {
       ws.delta_transmission = ex.slab.delta_transmission;
       ws.estimator = ex.slab.estimator;
       const StreamKey key{ex.run.seed, static_cast<std::uint64_t>(b), k};
-      std::vector<std::vector<double>> sums;
+      BrdfBatch batch(layout, static_cast<double>(m.samples), into[k]);
       std::vector<double> energy;
       for (std::size_t i = 0; i < m.theta_i.size(); ++i)
         for (std::size_t j = 0; j < m.phi_i.size(); ++j) {
           const double phi_i = m.phi_i[j];
           const Vec3 wi = spherical_direction(m.theta_i[i], phi_i);
-          sums.push_back(run_chunks(static_cast<std::uint64_t>(m.samples), layout.sums_size(),
-                                    key.with(i * m.phi_i.size() + j), [&](Rng& rng, std::uint64_t count, Sums& s) {
+          const std::size_t direction = i * m.phi_i.size() + j;
+          const Sums sums = run_chunks(static_cast<std::uint64_t>(m.samples), layout.sums_size(), key.with(direction),
+                                    [&](Rng& rng, std::uint64_t count, Sums& s) {
                                       BrdfAccumulator acc(layout, phi_i, s);
                                       if (ex.slab.wave_walk) {
                                         volume::wave_walk(medium, ws, wi, count, rng, acc);
@@ -90,18 +92,18 @@ std::vector<Table> simulate_slab(const Experiment& ex, const BatchLoop& loop) {
                                       auto flight = volume::make_flight(medium);
                                       for (std::uint64_t n = 0; n < count; ++n)
                                         volume::walk(medium, *flight, ws, wi, rng, acc);
-                                    }));
+                                    });
+          batch.add(direction, sums);
           if (writes_energy_table(m, ex)) {
-            const std::vector<double>& s = sums.back();
             double e[3] = {0, 0, 0};
             // Non-delta energies of every component and hemisphere (no substrate: the
             // only delta lobe is the unscattered transmission).
             const std::size_t first = layout.binned_size(), n = static_cast<std::size_t>(layout.components()) * layout.hemispheres() * 3;
-            for (std::size_t q = 0; q < n; ++q) e[q % 3] += s[first + q];
+            for (std::size_t q = 0; q < n; ++q) e[q % 3] += sums[first + q];
             for (double x : e) energy.push_back(x / static_cast<double>(m.samples));
           }
         }
-      add_brdf_batch(sums, static_cast<double>(m.samples), layout, into[k]);
+      batch.close();
       if (writes_energy_table(m, ex)) into[k].back().add_batch(energy);
       loop.progress().advance(work_units(m));
     }

@@ -6,6 +6,7 @@
 #include "sim/spheres/sphere_estimators.h"
 #include "sim/spheres/sphere_field.h"
 #include "sim/spheres/walks.h"
+#include "sim/tally/brdf_batch.h"
 
 namespace mcref {
 

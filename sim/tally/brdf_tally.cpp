@@ -106,49 +106,4 @@ std::vector<Table> make_brdf_tables(const std::string& name, const std::vector<d
   return out;
 }
 
-void add_brdf_batch(const std::vector<std::vector<double>>& sums, double paths, const BrdfLayout& l,
-                    std::vector<Table>& tables) {
-  const int C = l.components(), H = l.hemispheres(), T = l.theta_o_bins, P = l.phi_bins;
-  const double fold = l.folded ? 2.0 : 1.0;
-  const double dphi = (l.folded ? kPi : 2 * kPi) / P;
-  std::size_t table = 0;
-  for (int h = 0; h < H; ++h) {
-    // total + components, then albedo, then delta.
-    std::vector<std::vector<double>> est(C + 1), albedo(1), delta(1);
-    for (const std::vector<double>& s : sums) {
-      for (int part = 0; part <= C; ++part)
-        for (int t = 0; t < T; ++t) {
-          const double a = static_cast<double>(t) / T, b = static_cast<double>(t + 1) / T;
-          const double mu_lo = h == 0 ? 1 - b : a, mu_hi = h == 0 ? 1 - a : b;
-          const double omega = fold * 0.5 * (mu_hi * mu_hi - mu_lo * mu_lo) * dphi;
-          for (int p = 0; p < P; ++p)
-            for (int k = 0; k < 3; ++k) {
-              double e = 0;
-              for (int c = 0; c < C; ++c)
-                if (part == 0 || part == c + 1) e += s[((static_cast<std::size_t>(c * H + h) * T + t) * P + p) * 3 + k];
-              est[part].push_back(e / (paths * omega));
-            }
-        }
-      for (int kind = 0; kind < 2; ++kind) {
-        std::vector<double>& dst = kind == 0 ? albedo[0] : delta[0];
-        for (int part = 0; part <= C; ++part)  // components first, total last
-          for (int k = 0; k < 3; ++k) {
-            double e = 0;
-            for (int c = 0; c < C; ++c) {
-              if (part < C && part != c) continue;
-              const std::size_t i = static_cast<std::size_t>(c * H + h) * 3 + k;
-              const double non_delta = s[l.binned_size() + i], in_delta = s[l.binned_size() + C * H * 3 + i];
-              e += kind == 0 ? non_delta + in_delta : in_delta;
-            }
-            if (part == C) e += s[l.binned_size() + 2 * C * H * 3 + h * 3 + k];  // unscattered, total only
-            dst.push_back(e / paths);
-          }
-      }
-    }
-    for (int part = 0; part <= C; ++part) tables[table++].add_batch(est[part]);
-    tables[table++].add_batch(albedo[0]);
-    tables[table++].add_batch(delta[0]);
-  }
-}
-
 }  // namespace mcref

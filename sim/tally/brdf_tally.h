@@ -71,9 +71,6 @@ inline bool is_delta_table(const std::string& table_name) {
   const std::string tail = "_delta";
   return table_name.size() >= tail.size() && table_name.compare(table_name.size() - tail.size(), tail.size(), tail) == 0;
 }
-// Turns the sums of every incident direction (paths each) into one batch of
-// every table made by make_brdf_tables.
-void add_brdf_batch(const std::vector<std::vector<double>>& sums_per_direction, double paths,
-                    const BrdfLayout& layout, std::vector<Table>& tables);
+// (Batches of these tables: sim/tally/brdf_batch.h.)
 
 }  // namespace mcref

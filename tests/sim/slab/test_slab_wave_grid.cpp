@@ -39,6 +39,7 @@
 #include "sim/slab/medium.h"
 #include "sim/slab/walk.h"
 #include "sim/slab/wave_walk.h"
+#include "sim/tally/brdf_batch.h"
 #include "sim/tally/brdf_tally.h"
 #include "tests/sim/slab/test_slab_helpers.h"
 
