@@ -30,8 +30,8 @@ double measure_cells(const Measure& m, const Experiment& ex);
 int effective_threads(const Experiment& ex, int requested);
 
 // Estimated peak memory of simulating `ex` on `threads` threads, in bytes:
-// per table cell 48 bytes (sum, sum_sq, one batch's estimates and copies;
-// the value and stderr written), plus one chunk tally per thread (and two
+// per table cell 48 bytes (sum, sum_sq, one batch's estimates and copies, as
+// the sphere walks hold them; the value and stderr written), plus one chunk tally per thread (and two
 // more) of the measure's largest per-direction tally, 8 bytes a number.
 double memory_needed(const Experiment& ex, int threads);
 
