@@ -6,9 +6,14 @@ namespace mcref {
 
 BrdfBatch::BrdfBatch(const BrdfLayout& layout, double paths, std::vector<Table>& tables)
     : l_(layout), paths_(paths), tables_(tables), count_(static_cast<std::size_t>(layout.hemispheres()) * (layout.components() + 3)) {
-  const int H = l_.hemispheres(), T = l_.theta_o_bins;
-  if (tables_.size() < count_) throw std::logic_error("brdf tables do not match the layout");
-  directions_ = tables_[0].cells() / (static_cast<std::size_t>(T) * l_.phi_bins * 3);
+  const int C = l_.components(), H = l_.hemispheres(), T = l_.theta_o_bins;
+  if (tables_.size() < count_ || tables_[0].axes.size() < 2) throw std::logic_error("brdf tables do not match the layout");
+  directions_ = tables_[0].axes[0].size() * tables_[0].axes[1].size();  // theta_i x phi_i
+  for (std::size_t i = 0; i < count_; ++i) {
+    const bool binned = i % (C + 3) <= static_cast<std::size_t>(C);
+    const std::size_t per_direction = binned ? static_cast<std::size_t>(T) * l_.phi_bins * 3 : static_cast<std::size_t>(C + 1) * 3;
+    if (tables_[i].cells() != directions_ * per_direction) throw std::logic_error("brdf table " + tables_[i].name + " does not match the layout");
+  }
   seen_.assign(directions_, 0);
   const double fold = l_.folded ? 2.0 : 1.0;
   const double dphi = (l_.folded ? kPi : 2 * kPi) / l_.phi_bins;

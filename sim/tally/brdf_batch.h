@@ -26,7 +26,7 @@ class BrdfBatch {
   void close();
 
  private:
-  const BrdfLayout& l_;
+  BrdfLayout l_;
   double paths_;
   std::vector<Table>& tables_;
   std::size_t count_;          // make_brdf_tables' tables: per hemisphere, total, components, albedo, delta

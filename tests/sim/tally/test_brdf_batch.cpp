@@ -2,9 +2,10 @@
 // direction. Checked against values written out by hand from the tables'
 // definitions (sim/tally/brdf_tally.h): a bin holds energy / (paths x its
 // projected solid angle), components add up to the total, the albedo holds
-// delta lobes too and the total the unscattered light; the order in which
-// directions come in changes no bit; a batch with a direction missing or
-// added twice is refused.
+// delta lobes too and the total the unscattered light. Against the whole-batch
+// conversion it replaced: the same bits, whatever order the directions come in.
+// A batch with a direction missing or added twice, or tables of another
+// layout, are refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -102,25 +103,88 @@ TEST(BrdfBatch, BinsAreEnergyOverPathsTimesProjectedSolidAngle) {
   for (const Table& t : tables) EXPECT_EQ(t.batches, 1) << t.name;
 }
 
-TEST(BrdfBatch, DirectionOrderChangesNoBit) {
-  const BrdfLayout l = layout();
+namespace {
+
+// The conversion as it was before BrdfBatch (add_brdf_batch at 10f26d5: every
+// direction's sums held, then one vector per table, then Table::add_batch): the
+// reference for the bits.
+void whole_batch_reference(const std::vector<std::vector<double>>& sums, double paths, const BrdfLayout& l,
+                           std::vector<Table>& tables) {
+  const int C = l.components(), H = l.hemispheres(), T = l.theta_o_bins, P = l.phi_bins;
+  const double fold = l.folded ? 2.0 : 1.0;
+  const double dphi = (l.folded ? kPi : 2 * kPi) / P;
+  std::size_t table = 0;
+  for (int h = 0; h < H; ++h) {
+    std::vector<std::vector<double>> est(C + 1), albedo(1), delta(1);
+    for (const std::vector<double>& s : sums) {
+      for (int part = 0; part <= C; ++part)
+        for (int t = 0; t < T; ++t) {
+          const double a = static_cast<double>(t) / T, b = static_cast<double>(t + 1) / T;
+          const double mu_lo = h == 0 ? 1 - b : a, mu_hi = h == 0 ? 1 - a : b;
+          const double omega = fold * 0.5 * (mu_hi * mu_hi - mu_lo * mu_lo) * dphi;
+          for (int p = 0; p < P; ++p)
+            for (int k = 0; k < 3; ++k) {
+              double e = 0;
+              for (int c = 0; c < C; ++c)
+                if (part == 0 || part == c + 1) e += s[((static_cast<std::size_t>(c * H + h) * T + t) * P + p) * 3 + k];
+              est[part].push_back(e / (paths * omega));
+            }
+        }
+      for (int kind = 0; kind < 2; ++kind) {
+        std::vector<double>& dst = kind == 0 ? albedo[0] : delta[0];
+        for (int part = 0; part <= C; ++part)
+          for (int k = 0; k < 3; ++k) {
+            double e = 0;
+            for (int c = 0; c < C; ++c) {
+              if (part < C && part != c) continue;
+              const std::size_t i = static_cast<std::size_t>(c * H + h) * 3 + k;
+              const double non_delta = s[l.binned_size() + i], in_delta = s[l.binned_size() + C * H * 3 + i];
+              e += kind == 0 ? non_delta + in_delta : in_delta;
+            }
+            if (part == C) e += s[l.binned_size() + 2 * C * H * 3 + h * 3 + k];
+            dst.push_back(e / paths);
+          }
+      }
+    }
+    for (int part = 0; part <= C; ++part) tables[table++].add_batch(est[part]);
+    tables[table++].add_batch(albedo[0]);
+    tables[table++].add_batch(delta[0]);
+  }
+}
+
+}  // namespace
+
+// 3 batches, directions added in reverse order, against the whole-batch
+// conversion: sum, sum_sq and batches equal to the bit, folded or not, with
+// and without transmission; a table after the brdf tables is left alone.
+TEST(BrdfBatch, SameBitsAsTheWholeBatchConversion) {
   const std::size_t D = kThetaI.size() * kPhiI.size();
-  std::vector<Table> in_order = make_brdf_tables("brdf", kThetaI, kPhiI, l), reversed = in_order;
-  Rng rng(8);
-  for (int b = 0; b < 3; ++b) {
-    std::vector<std::vector<double>> sums;
-    for (std::size_t d = 0; d < D; ++d) sums.push_back(random_sums(l, rng));
-    add_brdf_batch(sums, 500, l, in_order);
-    BrdfBatch batch(l, 500, reversed);
-    for (std::size_t d = D; d-- > 0;) batch.add(d, sums[d]);
-    batch.close();
-  }
-  for (std::size_t i = 0; i < in_order.size(); ++i) {
-    EXPECT_EQ(in_order[i].batches, 3);
-    EXPECT_EQ(reversed[i].batches, 3);
-    EXPECT_EQ(in_order[i].sum, reversed[i].sum) << in_order[i].name;
-    EXPECT_EQ(in_order[i].sum_sq, reversed[i].sum_sq) << in_order[i].name;
-  }
+  for (const bool folded : {true, false})
+    for (const bool transmission : {true, false}) {
+      BrdfLayout l = layout();
+      l.folded = folded;
+      l.transmission = transmission;
+      std::vector<Table> reference = make_brdf_tables("brdf", kThetaI, kPhiI, l);
+      reference.emplace_back("other", "other", std::vector<Axis>{Axis::points("x", "1", {0, 1})});
+      std::vector<Table> streamed = reference;
+      Rng rng(8);
+      for (int b = 0; b < 3; ++b) {
+        std::vector<std::vector<double>> sums;
+        for (std::size_t d = 0; d < D; ++d) sums.push_back(random_sums(l, rng));
+        whole_batch_reference(sums, 500, l, reference);
+        BrdfBatch batch(l, 500, streamed);
+        for (std::size_t d = D; d-- > 0;) batch.add(d, sums[d]);
+        batch.close();
+      }
+      for (std::size_t i = 0; i + 1 < reference.size(); ++i) {
+        EXPECT_EQ(streamed[i].batches, 3) << streamed[i].name;
+        EXPECT_EQ(reference[i].sum, streamed[i].sum) << reference[i].name << " folded " << folded;
+        EXPECT_EQ(reference[i].sum_sq, streamed[i].sum_sq) << reference[i].name << " folded " << folded;
+      }
+      const Table& other = streamed.back();
+      EXPECT_EQ(other.batches, 0);
+      EXPECT_EQ(other.sum, std::vector<double>(2, 0.0));
+    }
 }
 
 TEST(BrdfBatch, RefusesAMissingOrRepeatedDirectionAndOtherLayouts) {
@@ -140,4 +204,8 @@ TEST(BrdfBatch, RefusesAMissingOrRepeatedDirectionAndOtherLayouts) {
   for (const Table& t : tables) EXPECT_EQ(t.batches, 1) << t.name;
   std::vector<Table> too_few(tables.begin(), tables.end() - 1);
   EXPECT_THROW(BrdfBatch(l, 100, too_few), std::logic_error);
+  BrdfLayout finer = l;
+  finer.phi_bins = 12;  // tables of another layout, as many of them
+  std::vector<Table> other_layout = make_brdf_tables("brdf", kThetaI, kPhiI, finer);
+  EXPECT_THROW(BrdfBatch(l, 100, other_layout), std::logic_error);
 }
