@@ -31,8 +31,9 @@ int effective_threads(const Experiment& ex, int requested);
 
 // Estimated peak memory of simulating `ex` on `threads` threads, in bytes:
 // per table cell 48 bytes (sum, sum_sq, one batch's estimates and copies, as
-// the sphere walks hold them; the value and stderr written), plus one chunk tally per thread (and two
-// more) of the measure's largest per-direction tally, 8 bytes a number.
+// the sphere walks hold them; the value and stderr written), plus one chunk
+// tally per thread (and two more) of the measure's largest per-direction
+// tally, 8 bytes a number.
 double memory_needed(const Experiment& ex, int threads);
 
 // The memory a run may plan for, in bytes: MCREF_MEMORY_LIMIT (bytes, with an
