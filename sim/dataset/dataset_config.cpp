@@ -1,7 +1,6 @@
 #include "sim/dataset/dataset_config.h"
 
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <set>
@@ -88,6 +87,9 @@ DatasetParameter read_parameter(const toml::table& t, const DatasetConfig& c, st
   p.key = r.any_string("key");
   if (p.key.empty() || p.key.front() == '.' || p.key.back() == '.' || p.key.find("..") != std::string::npos)
     r.fail("key", "must be an experiment key path such as \"geometry.layer.0.alpha\"");
+  if (p.key == "geometry.density_vdb")
+    r.fail("key", "a dataset cannot vary geometry.density_vdb (the files' contents would not be part of its identity); "
+                  "set it in the base experiment");
   const int given = (t.contains("values") ? 1 : 0) + (t.contains("choices") ? 1 : 0) + (t.contains("range") ? 1 : 0);
   const std::string dist = r.string("distribution", {"uniform", "log_uniform", "direction"}, std::string(""));
   if (given != 1 && dist != "direction")
@@ -197,12 +199,17 @@ DatasetConfig parse_dataset(const std::string& text, const std::string& file) {
   if (!d) r.fail("dataset", "is required ([dataset] with experiment = \"base.toml\")");
   TomlReader dr(*d, file, "dataset");
   c.experiment = dr.any_string("experiment");
-  const std::filesystem::path base = std::filesystem::path(file).parent_path() / c.experiment;
-  c.experiment_file = base.lexically_normal().string();
+  c.experiment_file = path_beside(file, c.experiment);
   c.base = parse_toml(read_input_file(c.experiment_file, file, "dataset.experiment"), c.experiment_file);
   std::ostringstream base_canonical;
   base_canonical << c.base;
   c.experiment_text = base_canonical.str();
+  // An input file's content is part of the dataset's identity (shards and resumes compare it).
+  if (const toml::node* vdb = find_path(c.base, "geometry.density_vdb"); vdb && vdb->is_string()) {
+    const std::string path = path_beside(c.experiment_file, *vdb->value<std::string>());
+    c.experiment_text += input_provenance("geometry.density_vdb", path,
+                                          read_input_file(path, c.experiment_file, "geometry.density_vdb"));
+  }
   c.seed = static_cast<std::uint64_t>(dr.integer("seed", 0, std::numeric_limits<std::int64_t>::max(), 1));
   const bool has_entries = dr.has("entries");
   c.per_point = dr.integer("entries", 1, std::int64_t(1) << 40, 1);

@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "sim/experiment/config_error.h"
+#include "sim/hdf5/file_seal.h"
 
 namespace mcref {
 
@@ -21,6 +22,16 @@ std::string read_input_file(const std::string& path, const std::string& from_fil
   buf << in.rdbuf();
   if (in.bad()) throw ConfigError(where, key, what + "cannot be read");
   return buf.str();
+}
+
+std::string path_beside(const std::string& file, const std::string& path) {
+  const std::filesystem::path given(path);
+  if (given.is_absolute()) return path;
+  return (std::filesystem::path(file).parent_path() / given).lexically_normal().string();
+}
+
+std::string input_provenance(const std::string& key, const std::string& path, const std::string& bytes) {
+  return "\n# " + key + " read from \"" + path + "\": " + content_digest(bytes) + "\n";
 }
 
 }  // namespace mcref

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -45,6 +46,15 @@ std::string seal_line(std::uint64_t bytes, std::uint64_t h) {
 }
 
 }  // namespace
+
+std::string content_digest(const std::string& bytes) {
+  std::istringstream in(bytes);
+  std::uint64_t n = 0;
+  const std::uint64_t h = digest(in, 0, n);
+  char line[64];
+  std::snprintf(line, sizeof line, "bytes=%" PRIu64 " fnv1a64=%016" PRIx64, n, h);
+  return line;
+}
 
 void seal_file(const std::string& path) {
   std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);

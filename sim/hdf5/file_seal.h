@@ -15,6 +15,10 @@ namespace mcref {
 
 constexpr int kSealBlockBytes = 512;  // the HDF5 user block (a power of two >= 512)
 
+// "bytes=<n> fnv1a64=<16 hex digits>" of `bytes` (the seal's digest, from byte 0):
+// names an input file's content in provenance.
+std::string content_digest(const std::string& bytes);
+
 // Writes the seal into the user block of the closed file `path` (std::runtime_error on I/O failure).
 void seal_file(const std::string& path);
 

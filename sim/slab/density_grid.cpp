@@ -86,10 +86,14 @@ DensityGrids::DensityGrids(const SlabGeometry& g) : geometry_(g) {
     double vmax = 0;
     for (int kz = 0; kz <= nz; ++kz) {
       const double s = 1.0 - static_cast<double>(kz) / nz;  // relative depth from the layer's top
-      const float v = static_cast<float>(l.density * l.profile.at(s));
-      vmax = std::fmax(vmax, v);
+      const float profile = static_cast<float>(l.density * l.profile.at(s));
       for (int i = 0; i <= n; ++i)
-        for (int j = 0; j <= n; ++j) acc.setValue(openvdb::Coord(i, j, kz), v);
+        for (int j = 0; j <= n; ++j) {
+          // density_vdb's voxels (column i = N, j = N repeating 0), else rho profile(s).
+          const float v = l.voxels ? (*l.voxels)[(static_cast<std::size_t>(i % n) * n + j % n) * (nz + 1) + kz] : profile;
+          vmax = std::fmax(vmax, v);
+          acc.setValue(openvdb::Coord(i, j, kz), v);
+        }
     }
     grid->insertMeta("phase", openvdb::StringMetadata(phase_name(l.phase)));
     grid->insertMeta("thickness", openvdb::DoubleMetadata(l.thickness));

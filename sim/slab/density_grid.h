@@ -1,5 +1,6 @@
 #pragma once
-// Each layer's density in an openvdb::FloatGrid: a periodic lateral tile of
+// Each layer's density (rho profile(depth), or density_vdb's voxels, sim/slab/density_vdb.h)
+// in an openvdb::FloatGrid: a periodic lateral tile of
 // side `tile` (lateral_voxels per side) voxelised in depth (depth_voxels
 // intervals), node-centred so the layer faces lie on voxel planes and the
 // trilinear (BoxSampler) reconstruction of a linear depth profile is exact.

@@ -12,6 +12,8 @@
 //                                               their probability at every event (scalar walk)
 //   backend = "homogeneous" | "openvdb"         free-flight sampling (default homogeneous)
 //   tile = 1.0, lateral_voxels = 4, depth_voxels = 32   openvdb grid
+//   density_vdb = "slab.vdb"                    openvdb: every layer's density from a file
+//                                               (sim/slab/density_vdb.h; no density keys in the layers)
 //   [[geometry.layer]]                           top to bottom, at least one
 //   phase = "sggx_surface" | "sggx_fiber" | "hg" | "isotropic" | "lambert_sphere"
 //   thickness = 1.0                              T
@@ -27,6 +29,8 @@
 #include <cmath>
 
 #include "sim/experiment/experiment_parts.h"
+#include "sim/files/input_file.h"
+#include "sim/slab/density_vdb.h"
 #include "sim/slab/wave_walk.h"
 
 namespace mcref {
@@ -57,15 +61,8 @@ DensityProfile read_profile(TomlReader& r) {
   return p;
 }
 
-SlabLayer read_layer(TomlReader& r) {
-  SlabLayer l;
-  const std::string phase = r.string("phase", {"sggx_surface", "sggx_fiber", "hg", "isotropic", "lambert_sphere"});
-  l.phase = phase == "sggx_surface" ? SlabPhase::kSggxSurface
-            : phase == "sggx_fiber" ? SlabPhase::kSggxFiber
-            : phase == "hg"         ? SlabPhase::kHenyeyGreenstein
-            : phase == "isotropic"  ? SlabPhase::kIsotropic
-                                    : SlabPhase::kLambertSphere;
-  l.thickness = r.number("thickness", {0, 1e9, true, false}, 1.0);
+// rho and its depth profile, from the layer's keys.
+void read_density(TomlReader& r, SlabLayer& l) {
   l.profile = read_profile(r);
   if (r.has("density") && r.has("optical_thickness"))
     r.fail("optical_thickness", "give either density or optical_thickness, not both");
@@ -79,6 +76,23 @@ SlabLayer read_layer(TomlReader& r) {
     if (!(tau <= 1e6))
       r.fail("density", "gives an optical thickness T rho mean(profile) of " + std::to_string(tau) +
                             ", more than 1e6; lower density or thickness");
+  }
+}
+
+SlabLayer read_layer(TomlReader& r, bool density_from_file) {
+  SlabLayer l;
+  const std::string phase = r.string("phase", {"sggx_surface", "sggx_fiber", "hg", "isotropic", "lambert_sphere"});
+  l.phase = phase == "sggx_surface" ? SlabPhase::kSggxSurface
+            : phase == "sggx_fiber" ? SlabPhase::kSggxFiber
+            : phase == "hg"         ? SlabPhase::kHenyeyGreenstein
+            : phase == "isotropic"  ? SlabPhase::kIsotropic
+                                    : SlabPhase::kLambertSphere;
+  l.thickness = r.number("thickness", {0, 1e9, true, false}, 1.0);
+  if (density_from_file) {
+    for (const char* key : {"density", "optical_thickness", "profile", "profile_top", "profile_bottom", "profile_table"})
+      if (r.has(key)) r.fail(key, "the layer's density comes from geometry.density_vdb; remove this key");
+  } else {
+    read_density(r, l);
   }
   if (l.is_sggx()) {
     // S has eigenvalues 1 and alpha^2 (SpongeCake Eq. 3-4): below 1e-4 a tilted
@@ -113,7 +127,7 @@ void read_slab_geometry(TomlReader& g, Experiment& e) {
   if (layers.empty()) g.fail("layer", "at least one [[geometry.layer]] table is required");
   for (std::size_t i = 0; i < layers.size(); ++i) {
     TomlReader r(*layers[i], g.file(), g.full("layer." + std::to_string(i)));
-    s.layers.push_back(read_layer(r));
+    s.layers.push_back(read_layer(r, g.has("density_vdb")));
     r.finish();
   }
   const std::string sub = g.string("substrate", {"none", "lambertian", "conductor", "rough_conductor"}, std::string("none"));
@@ -135,6 +149,12 @@ void read_slab_geometry(TomlReader& g, Experiment& e) {
   if (static_cast<double>(s.grid.lateral_voxels + 1) * (s.grid.lateral_voxels + 1) * (s.grid.depth_voxels + 1) *
           s.layers.size() > 2e8)
     g.fail("depth_voxels", "the grids would hold more than 2e8 voxels; use fewer lateral_voxels or depth_voxels");
+  if (g.has("density_vdb")) {
+    s.grid.density_vdb = g.any_string("density_vdb");
+    if (!s.grid.openvdb) g.fail("density_vdb", "needs backend = \"openvdb\"");
+    const std::string path = path_beside(e.file, s.grid.density_vdb);
+    e.text += volume::read_density_vdb(path, g.file(), g.full("density_vdb"), s);  // the provenance names its content
+  }
   s.wave_walk = g.string("walk", {"scalar", "wave"}, std::string("scalar")) == "wave";
   if (s.wave_walk)
     if (const std::string why = volume::wave_walk_unsupported(s); !why.empty()) g.fail("walk", why);
@@ -144,6 +164,10 @@ void read_slab_geometry(TomlReader& g, Experiment& e) {
                                             : SlabEstimator::kNextEventMis;
   if (s.estimator != SlabEstimator::kAnalog && s.wave_walk)
     g.fail("estimator", "\"" + estimator + "\" needs walk = \"scalar\" (the wave walk has no next-event estimator)");
+  for (std::size_t i = 0; i < s.layers.size(); ++i)
+    if (s.estimator != SlabEstimator::kAnalog && s.layers[i].varies_laterally)
+      g.fail("estimator", "\"" + estimator + "\" needs layers whose density varies in depth only; density_vdb's layer " +
+                              std::to_string(i) + " varies laterally (use \"analog\")");
   for (std::size_t i = 0; i < s.layers.size(); ++i)
     if (!s.grid.openvdb && s.layers[i].profile.kind != DensityProfile::Kind::kConstant)
       throw ConfigError(e.file, "geometry.layer." + std::to_string(i) + ".profile",

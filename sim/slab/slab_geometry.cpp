@@ -40,6 +40,7 @@ double DensityProfile::max() const {
 }
 
 bool SlabLayer::azimuthally_symmetric() const {
+  if (varies_laterally) return false;
   if (!is_sggx()) return true;
   return std::fabs(orientation.x) < 1e-12 && std::fabs(orientation.y) < 1e-12;
 }

@@ -7,6 +7,7 @@
 // from the top down, layer k occupies depths [d_k, d_k + T_k] below it
 // (z = -depth). Light arrives from above (directions point away from the
 // surface, z = macro normal).
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,12 @@ struct SlabLayer {
   double g = 0;                 // Henyey-Greenstein asymmetry
   Rgb albedo{1, 1, 1};          // single-scattering albedo gamma (flakes: F = gamma Schlick(f0))
   Rgb f0{1, 1, 1};              // Schlick normal reflectance of the flakes
+  // The density read from geometry.density_vdb (sim/slab/density_vdb.h), else
+  // null: voxel (i, j, k) at (i * N + j) * (depth_voxels + 1) + k, i, j in [0, N)
+  // (N = lateral_voxels), k = 0 on the layer's bottom face. density is then its
+  // mean over the layer and profile constant.
+  std::shared_ptr<const std::vector<float>> voxels;
+  bool varies_laterally = false;  // the voxels differ across some voxel plane
   bool is_sggx() const { return phase == SlabPhase::kSggxSurface || phase == SlabPhase::kSggxFiber; }
   // Optical thickness T rho mean(profile) (along the normal, sigma = 1 units).
   double optical_thickness() const { return thickness * density * profile.mean(); }
@@ -65,6 +72,7 @@ struct SlabGrid {
   double tile = 1.0;            // lateral period of the density tile (same units as T)
   int lateral_voxels = 4;       // voxels per tile side
   int depth_voxels = 32;        // voxel planes per layer in depth (node-centred)
+  std::string density_vdb;      // the densities' file (as given), or empty
 };
 
 struct SlabGeometry {

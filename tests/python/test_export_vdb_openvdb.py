@@ -88,3 +88,46 @@ def test_slab_grids_round_trip_through_pyopenvdb(cli, tmp_path):
     # Nothing stored at the seam i = N or j = N.
     for ijk in [(N, 0, 0), (0, N, 3), (N, N, NZ)]:
         assert not d0.getConstAccessor().isValueOn(ijk), ijk
+
+
+def test_density_edited_in_pyopenvdb_is_simulated(cli, tmp_path):
+    """export-vdb, a lateral variation written by pyopenvdb, and density_vdb:
+    the file is read as written (mean density, provenance), a changed S is refused."""
+    import mcref
+
+    exp, exported = tmp_path / "slab.toml", tmp_path / "slab.vdb"
+    exp.write_text(EXPERIMENT)
+    code, _, err = cli("export-vdb", str(exp), "-o", str(exported), "--quiet")
+    assert code == 0, err
+    grids, meta = vdb.readAll(str(exported))
+    by_name = {g.name: g for g in grids}
+    # Layer 1 (constant density 2): times 1 + 0.5 cos(2 pi i / N) cos(2 pi j / N), whose mean over
+    # i, j in [0, N) is 1, so the layer's mean density stays 2.
+    acc = by_name["layer1_density"].getAccessor()
+    for i in range(N):
+        for j in range(N):
+            for k in range(NZ + 1):
+                acc.setValueOn((i, j, k), 2.0 * (1 + 0.5 * math.cos(2 * math.pi * i / N) * math.cos(2 * math.pi * j / N)))
+    edited = tmp_path / "edited.vdb"
+    vdb.write(str(edited), grids=grids, metadata=meta)
+    text = EXPERIMENT.replace("tile =", 'density_vdb = "edited.vdb"\ntile =')
+    for key in ['density = 3.0\n', 'profile = "linear"\n', 'profile_top = 0.25\n', 'profile_bottom = 1.5\n',
+                'density = 2.0\n']:
+        assert key in text
+        text = text.replace(key, "")
+    lateral = tmp_path / "lateral.toml"
+    lateral.write_text(text)
+    before = edited.read_bytes()
+    out = tmp_path / "t.h5"
+    code, _, err = cli("simulate", str(lateral), "-o", str(out), "--quiet")
+    assert code == 0, err
+    assert edited.read_bytes() == before  # the input is untouched
+    config = mcref.read_tables(str(out)).provenance["config"]
+    assert f'# geometry.density_vdb read from "{edited}": bytes={len(before)} fnv1a64=' in config
+    # An S edited in the file is refused (S comes from alpha and orientation), naming file, grid and voxel.
+    by_name["layer0_S_diag"].getAccessor().setValueOn((1, 2, 3), (1.0, 1.0, 1.0))
+    vdb.write(str(edited), grids=grids, metadata=meta)
+    code, _, err = cli("simulate", str(lateral), "-o", str(tmp_path / "u.h5"), "--quiet")
+    assert code != 0
+    assert f"{edited}: key 'layer0_S_diag': voxel (1, 2, 3) holds (1, 1, 1), not the experiment's" in err
+    assert not (tmp_path / "u.h5").exists()

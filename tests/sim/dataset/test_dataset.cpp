@@ -13,6 +13,9 @@
 #include "sim/dataset/dataset_config.h"
 #include "sim/dataset/dataset_entry.h"
 #include "sim/experiment/config_error.h"
+#include "sim/experiment/experiment.h"
+#include "sim/slab/density_grid.h"
+#include "sim/slab/slab_vdb.h"
 
 namespace fs = std::filesystem;
 using mcref::ConfigError;
@@ -241,4 +244,36 @@ TEST_F(DatasetConfigTest, BadInputNamesFileKeyAndRange) {
   expect("[dataset]\nexperiment = \"base.toml\"\ncompression = 12\n", {"dataset.compression", "9"});
   expect(dataset_with("key = \"geometry.layer.0.alpha\"\nvalues = [0.1]\n[[parameter]]\nkey = \"geometry.layer.0.alpha\"\nvalues = [0.2]", ""),
          {"parameter.1.key", "twice"});
+}
+
+// A base experiment reading geometry.density_vdb: the file's content is part of
+// the dataset's identity (a changed file gives another identity), entries find
+// the file beside the base experiment, and no parameter may vary the file.
+TEST_F(DatasetConfigTest, DensityVdbContentIsPartOfTheIdentity) {
+  const std::string slab = R"([geometry]
+kind = "slab"
+backend = "openvdb"
+lateral_voxels = 2
+depth_voxels = 2
+)";
+  const std::string layer = "[[geometry.layer]]\nphase = \"isotropic\"\nalbedo = 0.5\n";
+  const std::string rest = "[run]\nbatches = 2\n[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 10\n";
+  const auto export_density = [&](double rho) {
+    const mcref::Experiment ex = mcref::parse_experiment(slab + layer + "density = " + std::to_string(rho) + "\n" + rest, "x.toml");
+    mcref::volume::write_vdb((dir_ / "d.vdb").string(), mcref::volume::DensityGrids(ex.slab));
+  };
+  export_density(1.0);
+  write("base.toml", slab + "density_vdb = \"d.vdb\"\n" + layer + rest);
+  const std::string dataset = dataset_with("key = \"geometry.layer.0.albedo\"\nvalues = [0.2, 0.4]", "");
+  const DatasetConfig a = parse(dataset);
+  EXPECT_NE(a.experiment_text.find("# geometry.density_vdb read from \"" + (dir_ / "d.vdb").string() + "\": bytes="),
+            std::string::npos)
+      << a.experiment_text;
+  EXPECT_DOUBLE_EQ(mcref::entry_experiment(a, mcref::plan_entry(a, 1)).slab.layers[0].density, 1.0);
+  export_density(2.0);
+  const DatasetConfig b = parse(dataset);
+  EXPECT_NE(a.experiment_text, b.experiment_text);
+  EXPECT_DOUBLE_EQ(mcref::entry_experiment(b, mcref::plan_entry(b, 0)).slab.layers[0].density, 2.0);
+  const std::string m = error_of(dataset_with("key = \"geometry.density_vdb\"\nchoices = [\"d.vdb\", \"e.vdb\"]", ""));
+  EXPECT_NE(m.find("parameter.0.key': a dataset cannot vary geometry.density_vdb"), std::string::npos) << m;
 }

@@ -34,8 +34,8 @@ samples = 20000
 
 // An OpenVDB slab of one SGGX surface-like layer (alpha 0.5, thickness 1,
 // density 3) on a unit tile of 16 x 16 voxel columns and 4 voxel intervals in
-// depth, for tests that vary its density laterally by editing the grids (no
-// TOML does); `layer_extra`: more keys of the layer.
+// depth, for tests that vary its density laterally by editing the grids (as a
+// density_vdb file would); `layer_extra`: more keys of the layer.
 inline mcref::Experiment lateral_grid_experiment(const std::string& layer_extra = "") {
   return mcref::parse_experiment(R"([geometry]
 kind = "slab"
