@@ -45,13 +45,18 @@ def fiber_s(alpha, theta_deg, phi_deg):
     return np.eye(3) + (alpha * alpha - 1) * np.outer(a, a)  # SpongeCake's fibre-like S
 
 
-def test_slab_grids_round_trip_through_pyopenvdb(cli, tmp_path):
+def export(cli, tmp_path):
+    """EXPERIMENT through `mcref export-vdb`, read by pyopenvdb: (grids, metadata, grids by name)."""
     exp, out = tmp_path / "slab.toml", tmp_path / "slab.vdb"
     exp.write_text(EXPERIMENT)
     code, _, err = cli("export-vdb", str(exp), "-o", str(out), "--quiet")
     assert code == 0, err
-    grids, _ = vdb.readAll(str(out))
-    by_name = {g.name: g for g in grids}
+    grids, meta = vdb.readAll(str(out))
+    return grids, meta, {g.name: g for g in grids}
+
+
+def test_slab_grids_round_trip_through_pyopenvdb(cli, tmp_path):
+    grids, _, by_name = export(cli, tmp_path)
     assert sorted(by_name) == ["layer0_S_diag", "layer0_S_offdiag", "layer0_density", "layer1_density"]
     types = {n: g.valueTypeName for n, g in by_name.items()}
     assert types == {"layer0_S_diag": "vec3s", "layer0_S_offdiag": "vec3s", "layer0_density": "float",
@@ -92,15 +97,11 @@ def test_slab_grids_round_trip_through_pyopenvdb(cli, tmp_path):
 
 def test_density_edited_in_pyopenvdb_is_simulated(cli, tmp_path):
     """export-vdb, a lateral variation written by pyopenvdb, and density_vdb:
-    the file is read as written (mean density, provenance), a changed S is refused."""
+    the file is simulated as written and left untouched, the provenance names its content, and a
+    changed S is refused."""
     import mcref
 
-    exp, exported = tmp_path / "slab.toml", tmp_path / "slab.vdb"
-    exp.write_text(EXPERIMENT)
-    code, _, err = cli("export-vdb", str(exp), "-o", str(exported), "--quiet")
-    assert code == 0, err
-    grids, meta = vdb.readAll(str(exported))
-    by_name = {g.name: g for g in grids}
+    grids, meta, by_name = export(cli, tmp_path)
     # Layer 1 (constant density 2): times 1 + 0.5 cos(2 pi i / N) cos(2 pi j / N), whose mean over
     # i, j in [0, N) is 1, so the layer's mean density stays 2.
     acc = by_name["layer1_density"].getAccessor()
