@@ -8,6 +8,7 @@
 
 #include "sim/experiment/toml_reader.h"
 #include "sim/files/input_file.h"
+#include "sim/hdf5/file_seal.h"
 
 namespace mcref {
 
@@ -204,11 +205,14 @@ DatasetConfig parse_dataset(const std::string& text, const std::string& file) {
   std::ostringstream base_canonical;
   base_canonical << c.base;
   c.experiment_text = base_canonical.str();
-  // An input file's content is part of the dataset's identity (shards and resumes compare it).
+  // An input file's content is part of the dataset's identity (shards and resumes compare it),
+  // with its path as written (relative to the base experiment), whatever the working directory.
   if (const toml::node* vdb = find_path(c.base, "geometry.density_vdb"); vdb && vdb->is_string()) {
-    const std::string path = path_beside(c.experiment_file, *vdb->value<std::string>());
-    c.experiment_text += input_provenance("geometry.density_vdb", path,
-                                          read_input_file(path, c.experiment_file, "geometry.density_vdb"));
+    const std::string given = *vdb->value<std::string>();
+    InputFile in{path_beside(c.experiment_file, given), ""};
+    in.digest = content_digest(read_input_file(in.path, c.experiment_file, "geometry.density_vdb"));
+    c.experiment_text += input_provenance("geometry.density_vdb", given, in.digest);
+    c.inputs.push_back(in);
   }
   c.seed = static_cast<std::uint64_t>(dr.integer("seed", 0, std::numeric_limits<std::int64_t>::max(), 1));
   const bool has_entries = dr.has("entries");

@@ -29,6 +29,8 @@
 
 #include <toml++/toml.h>
 
+#include "sim/files/input_file.h"
+
 namespace mcref {
 
 struct DatasetParameter {
@@ -54,7 +56,8 @@ struct DatasetConfig {
   std::string text;             // canonical text of the dataset file (identity, provenance)
   std::string experiment;       // dataset.experiment as written
   std::string experiment_file;  // the base experiment, resolved against the dataset file
-  std::string experiment_text;  // canonical text of the base experiment
+  std::string experiment_text;  // canonical text of the base experiment (and its inputs' contents)
+  std::vector<InputFile> inputs;  // the base experiment's own input files (geometry.density_vdb)
   toml::table base;             // the base experiment, parsed
   std::uint64_t seed = 1;
   std::int64_t per_point = 1;   // sampled entries per grid point

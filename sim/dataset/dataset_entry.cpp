@@ -192,13 +192,21 @@ EntryPlan plan_entry(const DatasetConfig& c, std::int64_t index) {
 Experiment entry_experiment(const DatasetConfig& c, const EntryPlan& plan) {
   std::ostringstream text;
   text << plan.experiment;
+  Experiment ex;
   try {
-    return parse_experiment(text.str(), c.experiment_file);
+    ex = parse_experiment(text.str(), c.experiment_file);
   } catch (const ConfigError& e) {
     std::string set;
     for (std::size_t i = 0; i + 1 < plan.assignments.size(); ++i) set += (set.empty() ? "" : ", ") + plan.assignments[i];
     throw ConfigError(c.file, "", "entry " + std::to_string(plan.index) + " (" + set + "): " + e.what());
   }
+  // Its input files as the dataset read them (they are part of its identity).
+  for (std::size_t k = 0; k < ex.inputs.size() && k < c.inputs.size(); ++k)
+    if (ex.inputs[k].digest != c.inputs[k].digest)
+      throw ConfigError(c.file, "", "entry " + std::to_string(plan.index) + ": '" + ex.inputs[k].path +
+                                        "' changed after the dataset was read (" + c.inputs[k].digest + ", now " +
+                                        ex.inputs[k].digest + "); rerun with the file as it was, or start a new output");
+  return ex;
 }
 
 }  // namespace mcref

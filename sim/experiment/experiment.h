@@ -3,6 +3,8 @@
 // of measures. Every error names the file, the key and the allowed range.
 #include <cstdint>
 #include <string>
+
+#include "sim/files/input_file.h"
 #include <vector>
 
 #include "sim/micrograin/micrograin_geometry.h"
@@ -38,6 +40,7 @@ struct Measure {
 struct Experiment {
   std::string file;  // where it came from (for messages)
   std::string text;  // the effective configuration (after --set), stored as provenance
+  std::vector<InputFile> inputs;  // the other files it read (geometry.density_vdb): never an output
   std::string kind;  // geometry kind: "micrograin", "slab" or "spheres"
   MicrograinGeometry micrograin;
   MicrograinMaterials materials;  // micrograin transport only

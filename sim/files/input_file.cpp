@@ -6,7 +6,6 @@
 #include <system_error>
 
 #include "sim/experiment/config_error.h"
-#include "sim/hdf5/file_seal.h"
 
 namespace mcref {
 
@@ -30,8 +29,8 @@ std::string path_beside(const std::string& file, const std::string& path) {
   return (std::filesystem::path(file).parent_path() / given).lexically_normal().string();
 }
 
-std::string input_provenance(const std::string& key, const std::string& path, const std::string& bytes) {
-  return "\n# " + key + " read from \"" + path + "\": " + content_digest(bytes) + "\n";
+std::string input_provenance(const std::string& key, const std::string& path, const std::string& digest) {
+  return "\n# " + key + " read from \"" + path + "\": " + digest + "\n";
 }
 
 }  // namespace mcref

@@ -12,8 +12,14 @@ std::string read_input_file(const std::string& path, const std::string& from_fil
 // (to the working directory if `file` names none).
 std::string path_beside(const std::string& file, const std::string& path);
 
-// The line an input's content adds to a configuration's provenance text:
-// "\n# <key> read from "<path>": bytes=<n> fnv1a64=<hex>\n" (a TOML comment).
-std::string input_provenance(const std::string& key, const std::string& path, const std::string& bytes);
+// A file an experiment reads besides itself (geometry.density_vdb).
+struct InputFile {
+  std::string path;    // resolved
+  std::string digest;  // of its content: "bytes=<n> fnv1a64=<hex>" (sim/hdf5/file_seal.h content_digest)
+};
+
+// The line an input adds to a configuration's provenance text, a TOML comment:
+// "\n# <key> read from "<path>": <digest>\n".
+std::string input_provenance(const std::string& key, const std::string& path, const std::string& digest);
 
 }  // namespace mcref

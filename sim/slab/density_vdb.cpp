@@ -10,6 +10,7 @@
 #include "models/sggx/sggx_distribution.h"
 #include "sim/experiment/config_error.h"
 #include "sim/files/input_file.h"
+#include "sim/hdf5/file_seal.h"
 
 namespace mcref::volume {
 
@@ -19,34 +20,54 @@ std::string coord_text(const openvdb::Coord& c) {
   return "(" + std::to_string(c.x()) + ", " + std::to_string(c.y()) + ", " + std::to_string(c.z()) + ")";
 }
 
-std::string number_text(double v) {
+std::string number_text(double v, int digits = 9) {
   std::ostringstream s;
-  s.precision(9);
+  s.precision(digits);
   s << v;
   return s.str();
 }
 
-// The grid's index-to-world map must be the experiment's: origin (0, 0, -bottom),
-// voxel (hx, hx, hz), axis-aligned (to 1e-6 of a voxel).
+// The grid's index-to-world map must be the experiment's: scale (hx, hx, hz),
+// axis-aligned, voxel (0, 0, 0) at (0, 0, -bottom); to 1e-6 relative in the
+// scale and 1e-4 of a voxel in the origin, so a map stored in float32 passes,
+// plus 1e-14 of the coordinates' magnitude (OpenVDB's maps round in double at
+// the layer's depth). Read from the map's matrix (world = index M, translation
+// in its last row).
 void check_transform(const std::string& file, const openvdb::GridBase& grid, double hx, double hz, double bottom,
                      const SlabGrid& g, double thickness) {
-  const openvdb::math::Transform& xf = grid.transform();
-  const openvdb::Vec3d o = xf.indexToWorld(openvdb::Vec3d(0, 0, 0));
-  const openvdb::Vec3d ex = xf.indexToWorld(openvdb::Vec3d(1, 0, 0)) - o, ey = xf.indexToWorld(openvdb::Vec3d(0, 1, 0)) - o,
-                       ez = xf.indexToWorld(openvdb::Vec3d(0, 0, 1)) - o;
-  const double tol = 1e-6 * std::min(hx, hz);
-  const auto near = [tol](const openvdb::Vec3d& a, double x, double y, double z) {
-    return std::fabs(a[0] - x) <= tol && std::fabs(a[1] - y) <= tol && std::fabs(a[2] - z) <= tol;
-  };
-  if (xf.isLinear() && near(o, 0, 0, -bottom) && near(ex, hx, 0, 0) && near(ey, 0, hx, 0) && near(ez, 0, 0, hz)) return;
+  const openvdb::math::MapBase::ConstPtr map = grid.transform().baseMap();
+  const openvdb::Mat4d m = map->isLinear() ? map->getAffineMap()->getMat4() : openvdb::Mat4d::zero();
+  const double want[3] = {hx, hx, hz}, origin[3] = {0, 0, -bottom};
+  const double depth_slack = 1e-14 * (bottom + g.tile);
+  bool ok = map->isLinear();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c)
+      ok = ok && std::fabs(m(r, c) - (r == c ? want[c] : 0.0)) <= 1e-6 * (r == c ? want[c] : std::min(hx, hz)) + depth_slack;
+    ok = ok && std::fabs(m(3, r) - origin[r]) <= 1e-4 * want[r] + depth_slack;
+  }
+  if (ok) return;
+  const auto t = [](double v) { return number_text(v, 12); };
+
   throw ConfigError(file, grid.getName(),
-                    "its voxels are " + number_text(ex.length()) + " x " + number_text(ey.length()) + " x " +
-                        number_text(ez.length()) + " with voxel (0, 0, 0) at (" + number_text(o[0]) + ", " +
-                        number_text(o[1]) + ", " + number_text(o[2]) + "); the experiment needs axis-aligned voxels " +
-                        number_text(hx) + " x " + number_text(hx) + " x " + number_text(hz) + " (tile " +
-                        number_text(g.tile) + " / lateral_voxels " + std::to_string(g.lateral_voxels) +
-                        ", thickness " + number_text(thickness) + " / depth_voxels " + std::to_string(g.depth_voxels) +
-                        ") with voxel (0, 0, 0) at (0, 0, " + number_text(-bottom) + ")");
+                    (map->isLinear() ? "its voxels are " + t(m(0, 0)) + " x " + t(m(1, 1)) + " x " + t(m(2, 2)) +
+                                           (m(0, 1) != 0 || m(0, 2) != 0 || m(1, 0) != 0 || m(1, 2) != 0 || m(2, 0) != 0 || m(2, 1) != 0 ? " (rotated)" : "") +
+                                           " with voxel (0, 0, 0) at (" + t(m(3, 0)) + ", " + t(m(3, 1)) + ", " + t(m(3, 2)) + ")"
+                                     : "its transform is not linear (" + map->type() + ")") +
+                        "; the experiment needs axis-aligned voxels " + t(hx) + " x " + t(hx) + " x " + t(hz) + " (tile " +
+                        t(g.tile) + " / lateral_voxels " + std::to_string(g.lateral_voxels) + ", thickness " +
+                        t(thickness) + " / depth_voxels " + std::to_string(g.depth_voxels) + ") with voxel (0, 0, 0) at (0, 0, " +
+                        t(-bottom) + ")");
+}
+
+// export-vdb's metadata, where the file has it, must agree with the experiment
+// (a tile exported at another size can otherwise have voxels of the right size).
+void check_metadata(const std::string& file, const openvdb::GridBase& grid, const char* name, double expected,
+                    const std::string& key) {
+  const auto m = grid.getMetadata<openvdb::DoubleMetadata>(name);
+  if (!m || std::fabs(m->value() - expected) <= 1e-9 * std::fabs(expected)) return;
+  throw ConfigError(file, grid.getName(),
+                    std::string("its metadata ") + name + " is " + number_text(m->value()) + " (as exported); the experiment's " +
+                        key + " is " + number_text(expected));
 }
 
 // Every active value (voxel or tile) lies in i, j in [0, n), k in [0, nz].
@@ -60,7 +81,8 @@ void check_extent(const std::string& file, const Grid& grid, int n, int nz) {
                         "active voxel " + coord_text(inside.isInside(box.min()) ? box.max() : box.min()) +
                             " lies outside i, j in [0, " + std::to_string(n) + "), k in [0, " + std::to_string(nz) +
                             "] (lateral_voxels " + std::to_string(n) + ", depth_voxels " + std::to_string(nz) +
-                            "); the tile is periodic, so its seam i = j = " + std::to_string(n) + " is not stored");
+                            "): the grid is larger than the experiment's, or it stores the periodic seam i or j = " +
+                            std::to_string(n) + " (export-vdb does not)");
   }
 }
 
@@ -95,7 +117,7 @@ std::string read_density_vdb(const std::string& path, const std::string& config_
     std::istringstream in(bytes);
     grids = openvdb::io::Stream(in).getGrids();
   } catch (const std::exception& err) {
-    throw ConfigError(path, "", std::string("is not a readable OpenVDB file (") + err.what() + ")");
+    throw ConfigError(config_file, key, "'" + path + "' is not a readable OpenVDB file (" + err.what() + ")");
   }
   std::map<std::string, openvdb::GridBase::Ptr> by_name;
   std::string names;
@@ -120,6 +142,8 @@ std::string read_density_vdb(const std::string& path, const std::string& config_
     const auto rho = openvdb::gridPtrCast<openvdb::FloatGrid>(found->second);
     if (!rho) throw ConfigError(path, found->first, "is a " + found->second->type() + " grid; densities need a FloatGrid");
     check_transform(path, *rho, hx, hz, bottom, sg, l.thickness);
+    check_metadata(path, *rho, "lateral_period", sg.tile, "geometry.tile");
+    check_metadata(path, *rho, "thickness", l.thickness, "geometry.layer." + std::to_string(k) + ".thickness");
     check_extent(path, *rho, n, nz);
     auto voxels = std::make_shared<std::vector<float>>(static_cast<std::size_t>(n) * n * (nz + 1));
     auto acc = rho->getConstAccessor();
@@ -142,8 +166,6 @@ std::string read_density_vdb(const std::string& path, const std::string& config_
         column_sum += column_mean;
         column_max = std::max(column_max, column_mean);
       }
-    if (!(column_max > 0))
-      throw ConfigError(path, found->first, "the density is zero everywhere in the layer; give it a positive voxel");
     if (!(l.thickness * column_max <= 1e6))
       throw ConfigError(path, found->first,
                         "a column's optical thickness T rho is " + number_text(l.thickness * column_max) +
@@ -179,7 +201,7 @@ std::string read_density_vdb(const std::string& path, const std::string& config_
     throw ConfigError(path, by_name.begin()->first,
                       "is not a grid the experiment reads (layer<k>_density, and layer<k>_S_diag, layer<k>_S_offdiag for "
                       "SGGX layers, k < " + std::to_string(geometry.layers.size()) + ")");
-  return input_provenance(key, path, bytes);
+  return content_digest(bytes);
 }
 
 }  // namespace mcref::volume

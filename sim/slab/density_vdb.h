@@ -23,7 +23,8 @@ namespace mcref::volume {
 
 // Fills each layer's voxels, density (the layer's mean) and varies_laterally
 // from `path` (already resolved; `config_file` and `key` name where it was
-// given, for a missing file); returns its input_provenance (sim/files/input_file.h).
+// given, for a missing or unreadable file); returns its content's digest
+// (sim/hdf5/file_seal.h content_digest).
 // Throws ConfigError.
 std::string read_density_vdb(const std::string& path, const std::string& config_file, const std::string& key,
                              SlabGeometry& geometry);

@@ -125,6 +125,8 @@ void read_slab_geometry(TomlReader& g, Experiment& e) {
   s.configured = true;
   const auto layers = g.tables("layer");
   if (layers.empty()) g.fail("layer", "at least one [[geometry.layer]] table is required");
+  if (g.has("density_vdb") && g.string("backend", {"homogeneous", "openvdb"}, std::string("homogeneous")) != "openvdb")
+    g.fail("density_vdb", "needs backend = \"openvdb\"");
   for (std::size_t i = 0; i < layers.size(); ++i) {
     TomlReader r(*layers[i], g.file(), g.full("layer." + std::to_string(i)));
     s.layers.push_back(read_layer(r, g.has("density_vdb")));
@@ -151,9 +153,10 @@ void read_slab_geometry(TomlReader& g, Experiment& e) {
     g.fail("depth_voxels", "the grids would hold more than 2e8 voxels; use fewer lateral_voxels or depth_voxels");
   if (g.has("density_vdb")) {
     s.grid.density_vdb = g.any_string("density_vdb");
-    if (!s.grid.openvdb) g.fail("density_vdb", "needs backend = \"openvdb\"");
-    const std::string path = path_beside(e.file, s.grid.density_vdb);
-    e.text += volume::read_density_vdb(path, g.file(), g.full("density_vdb"), s);  // the provenance names its content
+    InputFile in{path_beside(e.file, s.grid.density_vdb), ""};
+    in.digest = volume::read_density_vdb(in.path, g.file(), g.full("density_vdb"), s);
+    e.text += input_provenance(g.full("density_vdb"), in.path, in.digest);  // the provenance names its content
+    e.inputs.push_back(in);
   }
   s.wave_walk = g.string("walk", {"scalar", "wave"}, std::string("scalar")) == "wave";
   if (s.wave_walk)

@@ -96,12 +96,13 @@ def test_slab_grids_round_trip_through_pyopenvdb(cli, tmp_path):
 
 
 def test_density_edited_in_pyopenvdb_is_simulated(cli, tmp_path):
-    """export-vdb, a lateral variation written by pyopenvdb, and density_vdb:
-    the file is simulated as written and left untouched, the provenance names its content, and a
-    changed S is refused."""
+    """export-vdb, files written by pyopenvdb, and density_vdb: the unedited grids give the
+    original tables bit for bit, a lateral variation changes them, the file is left untouched,
+    the provenance names its content, and a changed S is refused."""
     import mcref
 
     grids, meta, by_name = export(cli, tmp_path)
+    vdb.write(str(tmp_path / "unedited.vdb"), grids=grids, metadata=meta)
     # Layer 1 (constant density 2): times 1 + 0.5 cos(2 pi i / N) cos(2 pi j / N), whose mean over
     # i, j in [0, N) is 1, so the layer's mean density stays 2.
     acc = by_name["layer1_density"].getAccessor()
@@ -118,12 +119,19 @@ def test_density_edited_in_pyopenvdb_is_simulated(cli, tmp_path):
         text = text.replace(key, "")
     lateral = tmp_path / "lateral.toml"
     lateral.write_text(text)
+    (tmp_path / "unedited.toml").write_text(text.replace("edited.vdb", "unedited.vdb"))
     before = edited.read_bytes()
     out = tmp_path / "t.h5"
-    code, _, err = cli("simulate", str(lateral), "-o", str(out), "--quiet")
-    assert code == 0, err
+    for toml, h5 in [(lateral, out), (tmp_path / "unedited.toml", tmp_path / "unedited.h5"),
+                     (tmp_path / "slab.toml", tmp_path / "original.h5")]:
+        code, _, err = cli("simulate", str(toml), "-o", str(h5), "--quiet")
+        assert code == 0, err
+    original, unedited, lateral_tables = (mcref.read_tables(str(tmp_path / f)) for f in ("original.h5", "unedited.h5", "t.h5"))
+    for name in original.names:
+        assert np.array_equal(original[name].sum, unedited[name].sum), name
+    assert not np.array_equal(original["brdf"].sum, lateral_tables["brdf"].sum)
     assert edited.read_bytes() == before  # the input is untouched
-    config = mcref.read_tables(str(out)).provenance["config"]
+    config = lateral_tables.provenance["config"]
     assert f'# geometry.density_vdb read from "{edited}": bytes={len(before)} fnv1a64=' in config
     # An S edited in the file is refused (S comes from alpha and orientation), naming file, grid and voxel.
     by_name["layer0_S_diag"].getAccessor().setValueOn((1, 2, 3), (1.0, 1.0, 1.0))

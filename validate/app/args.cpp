@@ -42,4 +42,9 @@ Args parse_args(const std::vector<std::string>& args, const std::string& verb, b
   return a;
 }
 
+std::vector<std::string> with_inputs(std::vector<std::string> files, const std::vector<InputFile>& more) {
+  for (const InputFile& f : more) files.push_back(f.path);
+  return files;
+}
+
 }  // namespace mcref::cli

@@ -70,7 +70,7 @@ int dataset(const std::vector<std::string>& raw, const std::string& command_line
   opt.quiet = a.quiet;
   opt.ranks = &Communicator::world();  // under mpirun: the entries spread over the ranks
   const DatasetConfig config = load_dataset(a.positional[0]);
-  check_on_root(*opt.ranks, [&] { check_output_file(a.output, {a.positional[0], config.experiment_file}); });
+  check_on_root(*opt.ranks, [&] { check_output_file(a.output, with_inputs({a.positional[0], config.experiment_file}, config.inputs)); });
   const DatasetRunSummary s = run_dataset(config, opt);
   if (!opt.ranks->root()) return 0;  // rank 0 reports for the job
   if (s.up_to_date) {

@@ -64,7 +64,7 @@ int export_vdb(const std::vector<std::string>& raw) {
   std::vector<std::string> sets = a.sets;
   if (a.seed >= 0) sets.push_back("run.seed=" + std::to_string(a.seed));
   const Experiment ex = load_experiment(a.positional[0], sets);
-  check_output_file(a.output, {a.positional[0]});
+  check_output_file(a.output, with_inputs({a.positional[0]}, ex.inputs));
   std::size_t written = 0;
   if (ex.kind == "slab") {
     if (voxel_size > 0) throw ConfigError("command line", "--voxel-size", "applies to micrograin fields; slabs use geometry.lateral_voxels and geometry.depth_voxels");

@@ -39,7 +39,7 @@ int simulate(const std::vector<std::string>& raw, const std::string& command_lin
   // Fail before simulating if the output cannot be written.
   SimulateOptions opt;
   opt.ranks = &Communicator::world();  // under mpirun: the batches spread over the ranks
-  check_on_root(*opt.ranks, [&] { check_output_file(a.output, {a.positional[0]}); });
+  check_on_root(*opt.ranks, [&] { check_output_file(a.output, with_inputs({a.positional[0]}, ex.inputs)); });
   opt.threads = a.threads;
   opt.quiet = a.quiet;
   SimulateSummary summary;

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/files/input_file.h"
+
 namespace mcref::cli {
 
 int simulate(const std::vector<std::string>& args, const std::string& command_line);
@@ -29,5 +31,7 @@ struct Args {
 // An integer command-line value in [lo, hi] (ConfigError naming the flag otherwise).
 long long parse_integer(const std::string& flag, const std::string& value, long long lo, long long hi);
 Args parse_args(const std::vector<std::string>& args, const std::string& verb, bool allow_set_and_seed);
+// The files a run reads (`files`, then `more`: an experiment's own inputs), none of which an output may overwrite.
+std::vector<std::string> with_inputs(std::vector<std::string> files, const std::vector<InputFile>& more);
 
 }  // namespace mcref::cli

@@ -201,6 +201,9 @@ std::vector<double> evaluate_slab_model(const std::string& model, const Table& t
 
 std::string slab_model_unsupported(const std::string& model, const Experiment& ex) {
   const SlabGeometry& g = ex.slab;
+  for (std::size_t k = 0; k < g.layers.size(); ++k)
+    if (g.layers[k].varies_laterally)  // exp(-tau) averaged over the tile is not exp(-mean tau)
+      return model + " assumes laterally uniform layers; layer " + std::to_string(k) + "'s density_vdb varies laterally";
   if (model == "spongecake_ss_substrate" && g.substrate.kind != SlabSubstrate::Kind::kLambertian)
     return "spongecake_ss_substrate is implemented for Lambertian substrates";
   if (model == "chandrasekhar_isotropic" &&

@@ -246,9 +246,11 @@ TEST_F(DatasetConfigTest, BadInputNamesFileKeyAndRange) {
          {"parameter.1.key", "twice"});
 }
 
-// A base experiment reading geometry.density_vdb: the file's content is part of
-// the dataset's identity (a changed file gives another identity), entries find
-// the file beside the base experiment, and no parameter may vary the file.
+// A base experiment reading geometry.density_vdb: the file's content, with its
+// path as the experiment gives it, is part of the dataset's identity (a changed
+// file gives another identity; reaching the same files by another path does
+// not); entries find the file beside the base experiment and refuse a file
+// changed after the dataset was read; no parameter may vary the file.
 TEST_F(DatasetConfigTest, DensityVdbContentIsPartOfTheIdentity) {
   const std::string slab = R"([geometry]
 kind = "slab"
@@ -258,19 +260,38 @@ depth_voxels = 2
 )";
   const std::string layer = "[[geometry.layer]]\nphase = \"isotropic\"\nalbedo = 0.5\n";
   const std::string rest = "[run]\nbatches = 2\n[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 10\n";
+  fs::create_directories(dir_ / "base");
   const auto export_density = [&](double rho) {
     const mcref::Experiment ex = mcref::parse_experiment(slab + layer + "density = " + std::to_string(rho) + "\n" + rest, "x.toml");
-    mcref::volume::write_vdb((dir_ / "d.vdb").string(), mcref::volume::DensityGrids(ex.slab));
+    mcref::volume::write_vdb((dir_ / "base" / "d.vdb").string(), mcref::volume::DensityGrids(ex.slab));
   };
   export_density(1.0);
-  write("base.toml", slab + "density_vdb = \"d.vdb\"\n" + layer + rest);
-  const std::string dataset = dataset_with("key = \"geometry.layer.0.albedo\"\nvalues = [0.2, 0.4]", "");
+  write("base/base.toml", slab + "density_vdb = \"d.vdb\"\n" + layer + rest);
+  const std::string dataset = "[dataset]\nexperiment = \"base/base.toml\"\n\n[[parameter]]\n"
+                              "key = \"geometry.layer.0.albedo\"\nvalues = [0.2, 0.4]\n";
   const DatasetConfig a = parse(dataset);
-  EXPECT_NE(a.experiment_text.find("# geometry.density_vdb read from \"" + (dir_ / "d.vdb").string() + "\": bytes="),
-            std::string::npos)
+  EXPECT_NE(a.experiment_text.find("# geometry.density_vdb read from \"d.vdb\": bytes="), std::string::npos)
       << a.experiment_text;
-  EXPECT_DOUBLE_EQ(mcref::entry_experiment(a, mcref::plan_entry(a, 1)).slab.layers[0].density, 1.0);
+  ASSERT_EQ(a.inputs.size(), 1u);
+  EXPECT_EQ(a.inputs[0].path, (dir_ / "base" / "d.vdb").string());
+  // The same files from another working directory (a relative path to the dataset file): the same identity.
+  const fs::path cwd = fs::current_path();
+  fs::current_path(dir_);
+  const DatasetConfig same = mcref::load_dataset("ds.toml");
+  fs::current_path(cwd);
+  EXPECT_EQ(same.inputs[0].path, "base/d.vdb");
+  EXPECT_EQ(same.experiment_text, a.experiment_text);
+  const mcref::Experiment entry = mcref::entry_experiment(a, mcref::plan_entry(a, 1));
+  EXPECT_DOUBLE_EQ(entry.slab.layers[0].density, 1.0);
+  EXPECT_DOUBLE_EQ(entry.slab.layers[0].albedo.r, 0.4);
+  // The file changed after the dataset was read: its entries refuse to run; read again, another identity.
   export_density(2.0);
+  try {
+    mcref::entry_experiment(a, mcref::plan_entry(a, 0));
+    ADD_FAILURE() << "an entry ran on a changed density_vdb";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("d.vdb' changed after the dataset was read"), std::string::npos) << e.what();
+  }
   const DatasetConfig b = parse(dataset);
   EXPECT_NE(a.experiment_text, b.experiment_text);
   EXPECT_DOUBLE_EQ(mcref::entry_experiment(b, mcref::plan_entry(b, 0)).slab.layers[0].density, 2.0);

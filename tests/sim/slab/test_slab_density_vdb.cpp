@@ -13,6 +13,7 @@
 #include "sim/files/vdb_file.h"
 #include "sim/slab/density_grid.h"
 #include "sim/slab/slab_vdb.h"
+#include "validate/model_evaluation.h"
 #include "tests/sim/slab/test_slab_helpers.h"
 
 using namespace mcref;
@@ -90,6 +91,30 @@ std::string write(const std::string& name, const openvdb::GridPtrVec& grids) {
 
 std::string two_layers(const std::string& name, const std::function<float(int, int, int)>& value = distinct) {
   return write(name, {density_grid(0, value), density_grid(1, value)});
+}
+
+// slab_text's geometry with an isotropic and an hg layer, densities from `file`.
+Experiment isotropic_layers(const std::string& file) {
+  return parse_experiment(R"([geometry]
+kind = "slab"
+backend = "openvdb"
+tile = 2.0
+lateral_voxels = 4
+depth_voxels = 8
+density_vdb = ")" + file + R"("
+[[geometry.layer]]
+phase = "isotropic"
+thickness = 0.5
+[[geometry.layer]]
+phase = "hg"
+g = 0.3
+thickness = 1.5
+[[measure]]
+quantity = "brdf"
+theta_i_deg = [30]
+samples = 1
+)",
+                          kDir + "iso.toml");
 }
 
 // The ConfigError message of parsing `make()`, or "" if it parses.
@@ -190,10 +215,10 @@ TEST(SlabDensityVdb, RefusesWhatItCannotRead) {
   {
     std::ofstream(kDir + "text.vdb") << "not a vdb\n";
     const std::string m = error_of([] { return from_file("text.vdb"); });
-    has(m, kDir + "text.vdb: is not a readable OpenVDB file");
+    has(m, "from_vdb.toml: key 'geometry.density_vdb': '" + kDir + "text.vdb' is not a readable OpenVDB file");
   }
-  has(error_of([&] {
-        std::string text = slab_text("density_vdb = \"" + good + "\"\n", "", "");
+  has(error_of([&] {  // with a density key left in a layer: the backend is what is wrong
+        std::string text = slab_text("density_vdb = \"" + good + "\"\n", "density = 1.0\n", "");
         text.replace(text.find("\"openvdb\""), 9, "\"homogeneous\"");
         return parse_experiment(text, "x.toml");
       }),
@@ -217,15 +242,14 @@ TEST(SlabDensityVdb, RefusesWhatItCannotRead) {
       "negative.vdb: key 'layer0_density': voxel (1, 2, 3) is -0.5; a density must be finite, in [0, 1e9]");
   has(error_of([] { return from_file(two_layers("nan.vdb", [](int i, int, int) { return i == 3 ? NAN : 1.0f; })); }),
       "voxel (3, 0, 0) is nan");
-  has(error_of([] { return from_file(two_layers("zero.vdb", [](int, int, int) { return 0.0f; })); }),
-      "key 'layer0_density': the density is zero everywhere in the layer");
   has(error_of([] { return from_file(two_layers("thick.vdb", [](int, int, int) { return 1e8f; })); }),
       "key 'layer0_density': a column's optical thickness T rho is 50000000, more than 1e6");
   {
     auto seam = density_grid(1, distinct);
     seam->tree().setValue(openvdb::Coord(4, 0, 2), 1.0f);  // the periodic seam, stored
     has(error_of([&] { return from_file(write("seam.vdb", {density_grid(0, distinct), seam})); }),
-        "key 'layer1_density': active voxel (4, 0, 2) lies outside i, j in [0, 4), k in [0, 8]");
+        "key 'layer1_density': active voxel (4, 0, 2) lies outside i, j in [0, 4), k in [0, 8] (lateral_voxels 4, "
+        "depth_voxels 8): the grid is larger than the experiment's, or it stores the periodic seam i or j = 4");
   }
   {
     auto shifted = density_grid(1, distinct);
@@ -260,4 +284,99 @@ TEST(SlabDensityVdb, RefusesAnSThatIsNotTheExperiments) {
   EXPECT_NE(m.find("edited_s.vdb: key 'layer0_S_offdiag': voxel (2, 1, 5) holds (0, 0, 0), not the experiment's"),
             std::string::npos)
       << m;
+}
+
+// Files export-vdb writes are accepted whatever the geometry's scale (the
+// transform is read from its matrix, not from differences of far-off points),
+// and so is a transform stored in float32; a file exported with another tile
+// is refused by its metadata, though its voxels have the experiment's size.
+TEST(SlabDensityVdb, TransformsAndMetadata) {
+  const auto round_trip = [](const std::string& name, const std::string& geometry, const std::string& layers) {
+    const std::string head = "[geometry]\nkind = \"slab\"\nbackend = \"openvdb\"\n" + geometry;
+    const std::string rest = "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 1\n";
+    const Experiment original = parse_experiment(head + layers + rest, kDir + "o.toml");
+    volume::write_vdb(kDir + name, volume::DensityGrids(original.slab));
+    std::string stripped = layers;
+    for (std::size_t at; (at = stripped.find("density = ")) != std::string::npos;)
+      stripped.erase(at, stripped.find('\n', at) + 1 - at);
+    return error_of([&] { return parse_experiment(head + "density_vdb = \"" + name + "\"\n" + stripped + rest, kDir + "i.toml"); });
+  };
+  // A thick, tenuous layer over a thin one: the thin layer's origin lies 3e7 deep.
+  EXPECT_EQ(round_trip("deep.vdb", "depth_voxels = 32\n",
+                       "[[geometry.layer]]\nphase = \"isotropic\"\nthickness = 3e7\ndensity = 1e-9\n"
+                       "[[geometry.layer]]\nphase = \"isotropic\"\nthickness = 0.001\ndensity = 1000.0\n"),
+            "");
+  // A zero-density layer (allowed by density = 0 too).
+  EXPECT_EQ(round_trip("empty.vdb", "",
+                       "[[geometry.layer]]\nphase = \"isotropic\"\ndensity = 0.0\n"
+                       "[[geometry.layer]]\nphase = \"hg\"\ng = 0.5\ndensity = 2.0\n"),
+            "");
+  // Maps stored in float32, as some tools write them (0.3 / 64, 0.7 / 64 and 0.3 are not floats).
+  {
+    const std::string head = "[geometry]\nkind = \"slab\"\nbackend = \"openvdb\"\ntile = 0.7\ndepth_voxels = 64\n";
+    const std::string layers = "[[geometry.layer]]\nphase = \"isotropic\"\nthickness = 0.3\n"
+                               "[[geometry.layer]]\nphase = \"isotropic\"\nthickness = 0.7\n";
+    const std::string rest = "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 1\n";
+    const Experiment original = parse_experiment(head + layers + rest, kDir + "o.toml");
+    openvdb::GridPtrVec grids = volume::export_grids(volume::DensityGrids(original.slab));
+    for (std::size_t k = 0; k < 2; ++k) {
+      const double hz = (k == 0 ? 0.3 : 0.7) / 64, bottom = k == 0 ? 0.3 : 1.0;
+      auto xf = openvdb::math::Transform::createLinearTransform();
+      xf->preScale(openvdb::Vec3d(static_cast<float>(0.7 / 4), static_cast<float>(0.7 / 4), static_cast<float>(hz)));
+      xf->postTranslate(openvdb::Vec3d(0, 0, static_cast<float>(-bottom)));
+      ASSERT_NE(xf->baseMap()->getAffineMap()->getMat4()(2, 2), hz);  // the test's point: rounded
+      grids[k]->setTransform(xf);
+    }
+    write("float32.vdb", grids);
+    EXPECT_EQ(error_of([&] { return parse_experiment(head + "density_vdb = \"float32.vdb\"\n" + layers + rest, kDir + "f.toml"); }), "");
+  }
+  // Exported from a tile of 1 with 2 voxels a side; read into a tile of 2 with 4 (voxels of the same size).
+  const std::string small = kDir + "small_tile.vdb";
+  {
+    const Experiment e = parse_experiment(slab_text("", "density = 1.0\n", "density = 1.0\n"), kDir + "s.toml");
+    Experiment half = e;
+    half.slab.grid.tile = 1.0;
+    half.slab.grid.lateral_voxels = 2;
+    volume::write_vdb(small, volume::DensityGrids(half.slab));
+  }
+  const std::string m = error_of([&] { return from_file(small); });
+  EXPECT_NE(m.find("small_tile.vdb: key 'layer0_density': its metadata lateral_period is 1 (as exported); the "
+                   "experiment's geometry.tile is 2"),
+            std::string::npos)
+      << m;
+}
+
+// What the file may hold besides densities: S in double (Vec3DGrid) equal to
+// the layer's; no S for a layer that is not SGGX; no grid twice.
+TEST(SlabDensityVdb, SGridsAndNames) {
+  const Experiment original = parse_experiment(slab_text("", "density = 3.0\n", "density = 1.0\n"), kDir + "o.toml");
+  const volume::DensityGrids grids(original.slab);
+  openvdb::GridPtrVec in_double;  // the simulation's own grids: S in double
+  for (const auto& g : grids.all_grids()) in_double.push_back(g->deepCopyGrid());
+  for (auto& g : in_double) {  // without the periodic seam, as a file holds them
+    if (auto f = openvdb::gridPtrCast<openvdb::FloatGrid>(g)) f->clip(openvdb::CoordBBox({0, 0, 0}, {3, 3, 8}));
+    if (auto d = openvdb::gridPtrCast<openvdb::Vec3DGrid>(g)) d->clip(openvdb::CoordBBox({0, 0, 0}, {3, 3, 8}));
+  }
+  EXPECT_EQ(error_of([&] { return from_file(write("double_s.vdb", in_double)); }), "");
+  // An S grid beside an hg layer.
+  auto s = openvdb::Vec3SGrid::create();
+  s->setName("layer1_S_diag");
+  const std::string hg = error_of([&] { return isotropic_layers(write("hg_s.vdb", {density_grid(0, distinct), density_grid(1, distinct), s})); });
+  EXPECT_NE(hg.find("hg_s.vdb: key 'layer1_S_diag': layer 1 is not an SGGX layer: it has no S"), std::string::npos) << hg;
+  auto dup = density_grid(0, distinct);
+  const std::string m = error_of([&] { return from_file(write("twice.vdb", {density_grid(0, distinct), density_grid(1, distinct), dup})); });
+  EXPECT_NE(m.find("twice.vdb: key 'layer0_density': two grids have this name"), std::string::npos) << m;
+}
+
+// A layer that varies in depth only keeps an isotropic sample isotropic (and
+// flown exactly); a lateral variation makes the slab models unsupported.
+TEST(SlabDensityVdb, IsotropyAndModels) {
+  const Experiment depth_only = isotropic_layers(two_layers("depth_only.vdb", [](int, int, int z) { return 1.0f + z; }));
+  EXPECT_TRUE(depth_only.isotropic);
+  EXPECT_FALSE(depth_only.slab.layers[1].varies_laterally);
+  EXPECT_EQ(slab_models().unsupported("spongecake_ss_brdf", depth_only), "");
+  const Experiment lateral = isotropic_layers(two_layers("lateral_iso.vdb"));
+  EXPECT_FALSE(lateral.isotropic);
+  EXPECT_EQ(slab_models().unsupported("white_furnace", lateral),
+            "white_furnace assumes laterally uniform layers; layer 0's density_vdb varies laterally");
 }

@@ -59,6 +59,26 @@ TEST_F(Cli, OutputNamingAnInputIsRefused) {
   EXPECT_EQ(slurp(path("t.h5")), shard);
 }
 
+// geometry.density_vdb is an input too: simulate, export-vdb and dataset refuse
+// an output naming it, and leave it as it was.
+TEST_F(Cli, OutputNamingTheDensityVdbIsRefused) {
+  const std::string base = "[geometry]\nkind = \"slab\"\nbackend = \"openvdb\"\n";
+  const std::string layer = "[[geometry.layer]]\nphase = \"isotropic\"\nalbedo = 0.5\n";
+  const std::string rest = "[run]\nseed = 1\nbatches = 2\n[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 10\n";
+  const std::string vdb = path("d.vdb");
+  ASSERT_EQ(mcref("export-vdb " + quote(write("e.toml", base + layer + "density = 2.0\n" + rest)) + " -o " + quote(vdb) + " --quiet")
+                .exit_code,
+            0);
+  const std::string before = slurp(vdb);
+  const std::string exp = write("x.toml", base + "density_vdb = \"d.vdb\"\n" + layer + rest);
+  expect_one_line_error(mcref("simulate " + quote(exp) + " -o " + quote(vdb) + " --quiet"), {"-o", "is the input"});
+  expect_one_line_error(mcref("export-vdb " + quote(exp) + " -o " + quote(path("./d.vdb")) + " --quiet"), {"is the input"});
+  write("ds.toml", "[dataset]\nexperiment = \"x.toml\"\n[[parameter]]\nkey = \"geometry.layer.0.albedo\"\nvalues = [0.2]\n");
+  expect_one_line_error(mcref("dataset " + quote(path("ds.toml")) + " -o " + quote(vdb) + " --quiet"), {"is the input"});
+  EXPECT_EQ(slurp(vdb), before);
+  EXPECT_EQ(mcref("simulate " + quote(exp) + " -o " + quote(path("t.h5")) + " --quiet").exit_code, 0);
+}
+
 TEST_F(Cli, OutputLocationsAreCheckedBeforeAnyWork) {
   const std::string exp = write("x.toml", experiment());
   const std::string missing = path("missing/dir/x.h5");
