@@ -42,15 +42,24 @@ bool all_active_equal(const Grid& grid, const typename Grid::ValueType& v) {
   return true;
 }
 
+// A layer's voxels: the density from a dense copy (i, j in [0, N], z in [0,
+// depth_voxels], read once through OpenVDB: cell_bounds reads each many times),
+// S through OpenVDB.
 class LayerReader {
  public:
-  LayerReader(const DensityGrids& g, std::size_t k) : rho_(g.grids()[k]->getConstAccessor()) {
+  LayerReader(const DensityGrids& g, std::size_t k)
+      : planes_(g.geometry().grid.lateral_voxels + 1), depth_planes_(g.geometry().grid.depth_voxels + 1) {
+    rho_.resize(static_cast<std::size_t>(planes_) * planes_ * depth_planes_);
+    auto acc = g.grids()[k]->getConstAccessor();
+    for (int i = 0; i < planes_; ++i)
+      for (int j = 0; j < planes_; ++j)
+        for (int z = 0; z < depth_planes_; ++z) rho_[index(i, j, z)] = acc.getValue(openvdb::Coord(i, j, z));
     if (g.has_sggx(k)) {
       diag_ = std::make_unique<openvdb::Vec3DGrid::ConstAccessor>(g.s_diag(k)->getConstAccessor());
       off_ = std::make_unique<openvdb::Vec3DGrid::ConstAccessor>(g.s_offdiag(k)->getConstAccessor());
     }
   }
-  double density(int i, int j, int z) { return rho_.getValue(openvdb::Coord(i, j, z)); }
+  double density(int i, int j, int z) const { return rho_[index(i, j, z)]; }
   sggx::Mat3 matrix(int i, int j, int z) {
     const openvdb::Coord c(i, j, z);
     const openvdb::Vec3d d = diag_->getValue(c), o = off_->getValue(c);
@@ -65,7 +74,9 @@ class LayerReader {
   }
 
  private:
-  openvdb::FloatGrid::ConstAccessor rho_;
+  std::size_t index(int i, int j, int z) const { return (static_cast<std::size_t>(i) * planes_ + j) * depth_planes_ + z; }
+  int planes_, depth_planes_;
+  std::vector<float> rho_;
   std::unique_ptr<openvdb::Vec3DGrid::ConstAccessor> diag_, off_;
 };
 
@@ -76,6 +87,29 @@ bool laterally_uniform(const openvdb::FloatGrid& grid) {
     if (*it != acc.getValue(openvdb::Coord(0, 0, it.getCoord().z()))) return false;
   return true;
 }
+
+// Sliding maxima on a periodic row of m values (in[k stride], k < m): out[c stride]
+// = max over in[(c + s b) mod m], b in [0, w) (s = +1 or -1, w <= m), in O(m)
+// whatever w (van Herk 1992, Gil & Werman 1993): the row unrolled so each window
+// is ext[c, c + w), maxima from each block of w's start (pre) and to its end
+// (suf); a window spans at most two blocks. The maximum of a set of doubles is
+// exact in any order, so this equals the direct maximum bit for bit.
+struct WindowMax {
+  std::vector<double> ext, pre, suf;
+  void operator()(const double* in, std::ptrdiff_t stride, int m, int w, int s, double* out) {
+    const int len = m + w - 1;
+    ext.resize(len);
+    pre.resize(len);
+    suf.resize(len);
+    for (int t = 0; t < len; ++t) {
+      const int k = s > 0 ? t % m : ((t - (w - 1)) % m + m) % m;  // s = -1: window c ends at c
+      ext[t] = in[k * stride];
+    }
+    for (int t = 0; t < len; ++t) pre[t] = t % w == 0 ? ext[t] : std::max(pre[t - 1], ext[t]);
+    for (int t = len - 1; t >= 0; --t) suf[t] = (t + 1) % w == 0 || t == len - 1 ? ext[t] : std::max(suf[t + 1], ext[t]);
+    for (int c = 0; c < m; ++c) out[c * stride] = std::max(suf[c], pre[c + w - 1]);
+  }
+};
 
 // Linear interpolation, exact at t = 0 and t = 1.
 double lerp(double a, double b, double t) { return (1 - t) * a + t * b; }
@@ -100,9 +134,13 @@ Bounds cell_bounds(LayerReader& read, int n, int m, int ci, int cj, int z, bool 
       double tx[2], ty[2];
       overlap(ci, vi, tx);
       overlap(cj, vj, ty);
+      // Away from the tile's edge both neighbours are the same column: read it once.
+      const int j1s[2] = {vj + 1, (vj + 1) % n}, i1s[2] = {vi + 1, (vi + 1) % n};
+      const int nj = j1s[1] == j1s[0] ? 1 : 2, ni = i1s[1] == i1s[0] ? 1 : 2;
       for (int zz = z; zz <= z + 1; ++zz)
-        for (const int j1 : {vj + 1, (vj + 1) % n})
-          for (const int i1 : {vi + 1, (vi + 1) % n}) {
+        for (int b = 0; b < nj; ++b)
+          for (int a = 0; a < ni; ++a) {
+            const int j1 = j1s[b], i1 = i1s[a];
             const double v00 = read.density(vi, vj, zz), v10 = read.density(i1, vj, zz);
             const double v01 = read.density(vi, j1, zz), v11 = read.density(i1, j1, zz);
             for (const double y : ty)
@@ -154,19 +192,20 @@ std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_b
     // Depth cells: runs of voxel intervals whose bounds stay narrow in every column.
     const std::size_t row = static_cast<std::size_t>(m) * m;
     L.faces.push_back(top);
+    std::vector<Run> run(row), wider(row);  // (reused: no allocation per voxel interval)
     for (int r0 = 0; r0 < nz;) {
-      std::vector<Run> run(row);
+      std::fill(run.begin(), run.end(), Run());
       for (std::size_t c = 0; c < row; ++c) run[c].add(fine[r0 * row + c]);
       int r1 = r0 + 1;
       for (; r1 < nz; ++r1) {
-        std::vector<Run> wider = run;
+        wider = run;
         bool narrow = true;
         for (std::size_t c = 0; c < row; ++c) {
           wider[c].add(fine[r1 * row + c]);
           narrow = narrow && wider[c].narrow();
         }
         if (!narrow) break;
-        run = std::move(wider);
+        std::swap(run, wider);
       }
       double row_hi = 0;
       for (const Run& c : run) {
@@ -194,24 +233,15 @@ std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_b
       const std::size_t cells = L.hi.size();
       L.ahead_hi.resize(4 * L.box_reach.size() * cells);
       std::vector<double> along_x(row);  // max over the rx + 1 cells from each cell along x, in one depth row
+      WindowMax window;
       for (std::size_t shape = 0; shape < L.box_reach.size(); ++shape)
         for (int q = 0; q < 4; ++q) {
           const int rx = L.box_reach[shape][0], ry = L.box_reach[shape][1], sx = q & 1 ? -1 : 1, sy = q & 2 ? -1 : 1;
           double* ahead = L.ahead_hi.data() + (shape * 4 + q) * cells;
           for (std::size_t z = 0; z < L.row_hi.size(); ++z) {
             const double* hi = L.hi.data() + z * row;
-            for (int cj = 0; cj < m; ++cj)
-              for (int ci = 0; ci < m; ++ci) {
-                double best = 0;
-                for (int b = 0; b <= rx; ++b) best = std::max(best, hi[cj * m + (ci + sx * b + m) % m]);
-                along_x[cj * m + ci] = best;
-              }
-            for (int cj = 0; cj < m; ++cj)
-              for (int ci = 0; ci < m; ++ci) {
-                double best = 0;
-                for (int a = 0; a <= ry; ++a) best = std::max(best, along_x[((cj + sy * a + m) % m) * m + ci]);
-                ahead[z * row + cj * m + ci] = best;
-              }
+            for (int cj = 0; cj < m; ++cj) window(hi + cj * m, 1, m, rx + 1, sx, along_x.data() + cj * m);
+            for (int ci = 0; ci < m; ++ci) window(along_x.data() + ci, m, m, ry + 1, sy, ahead + z * row + ci);
           }
         }
     }

@@ -254,7 +254,9 @@ TEST(SlabMajorants, BoundTheExtinctionInEveryCell) {
 // shape, quadrant and cell, the max of hi over exactly the box the flight uses:
 // the cell and the rx cells ahead of it along x and ry along y, in the
 // quadrant's directions, wrapped around the tile (brute force, cell by cell).
-// On the random layer and the cosine layer, cells of half a column and of one.
+// On the random layer and the cosine layer, cells of half a column and of one;
+// the cosine layer also with the widest boxes (reach m - 1: a window of the
+// whole row, computed by sliding maxima in majorant_grid.cpp).
 TEST(SlabMajorants, BoxMajorantsAreTheMaxOverTheirBoxes) {
   const Experiment random = parse_experiment(kGeometry, "m.toml");
   const Experiment lateral = slab_test::lateral_grid_experiment();
@@ -263,7 +265,9 @@ TEST(SlabMajorants, BoxMajorantsAreTheMaxOverTheirBoxes) {
     Rng rng(2025);
     const volume::SlabMedium stack(random.slab, random_grids(random.slab, rng), block);
     const auto cosine = cosine_lateral_medium(lateral.slab, block, 0);
-    for (const volume::LayerMajorants* M : {&stack.majorants()[2], &cosine->majorants()[0]}) {
+    const auto widest = cosine_lateral_medium(lateral.slab, block, 1 << 20);  // clamped to m - 1
+    ASSERT_EQ(widest->majorants()[0].reach, widest->majorants()[0].lateral - 1);
+    for (const volume::LayerMajorants* M : {&stack.majorants()[2], &cosine->majorants()[0], &widest->majorants()[0]}) {
       const int m = M->lateral, r = M->reach;
       ASSERT_GT(m, 1);
       ASSERT_GE(r, 1);
