@@ -3,10 +3,9 @@
 // of measures. Every error names the file, the key and the allowed range.
 #include <cstdint>
 #include <string>
-
-#include "sim/files/input_file.h"
 #include <vector>
 
+#include "sim/files/input_file.h"
 #include "sim/micrograin/micrograin_geometry.h"
 #include "sim/micrograin/micrograin_materials.h"
 #include "sim/slab/slab_geometry.h"

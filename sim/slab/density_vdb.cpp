@@ -47,16 +47,17 @@ void check_transform(const std::string& file, const openvdb::GridBase& grid, dou
   }
   if (ok) return;
   const auto t = [](double v) { return number_text(v, 12); };
-
+  std::string has = "its transform is not linear (" + map->type() + ")";
+  if (map->isLinear()) {
+    const bool rotated = m(0, 1) != 0 || m(0, 2) != 0 || m(1, 0) != 0 || m(1, 2) != 0 || m(2, 0) != 0 || m(2, 1) != 0;
+    has = "its voxels are " + t(m(0, 0)) + " x " + t(m(1, 1)) + " x " + t(m(2, 2)) + (rotated ? " (rotated)" : "") +
+          " with voxel (0, 0, 0) at (" + t(m(3, 0)) + ", " + t(m(3, 1)) + ", " + t(m(3, 2)) + ")";
+  }
   throw ConfigError(file, grid.getName(),
-                    (map->isLinear() ? "its voxels are " + t(m(0, 0)) + " x " + t(m(1, 1)) + " x " + t(m(2, 2)) +
-                                           (m(0, 1) != 0 || m(0, 2) != 0 || m(1, 0) != 0 || m(1, 2) != 0 || m(2, 0) != 0 || m(2, 1) != 0 ? " (rotated)" : "") +
-                                           " with voxel (0, 0, 0) at (" + t(m(3, 0)) + ", " + t(m(3, 1)) + ", " + t(m(3, 2)) + ")"
-                                     : "its transform is not linear (" + map->type() + ")") +
-                        "; the experiment needs axis-aligned voxels " + t(hx) + " x " + t(hx) + " x " + t(hz) + " (tile " +
-                        t(g.tile) + " / lateral_voxels " + std::to_string(g.lateral_voxels) + ", thickness " +
-                        t(thickness) + " / depth_voxels " + std::to_string(g.depth_voxels) + ") with voxel (0, 0, 0) at (0, 0, " +
-                        t(-bottom) + ")");
+                    has + "; the experiment needs axis-aligned voxels " + t(hx) + " x " + t(hx) + " x " + t(hz) +
+                        " (tile " + t(g.tile) + " / lateral_voxels " + std::to_string(g.lateral_voxels) + ", thickness " +
+                        t(thickness) + " / depth_voxels " + std::to_string(g.depth_voxels) +
+                        ") with voxel (0, 0, 0) at (0, 0, " + t(-bottom) + ")");
 }
 
 // export-vdb's metadata, where the file has it, must agree with the experiment

@@ -8,11 +8,14 @@
 //                       (k' = 0 on the layer's bottom face), with the transform
 //                       x = i tile / lateral_voxels, y = j tile / lateral_voxels,
 //                       z = k' thickness / depth_voxels - (depth of the bottom face);
-//                       values rho, finite, in [0, 1e9]; inactive voxels read
-//                       as the grid's background or tile value.
+//                       values rho, finite, in [0, 1e9]; an inactive voxel reads
+//                       as the value the grid stores for it (its background where
+//                       nothing is stored). Where the grid has export-vdb's metadata
+//                       lateral_period and thickness, they must be the experiment's.
 //   "layer<k>_S_diag", "layer<k>_S_offdiag"   optional (SGGX layers): S is the
 //                       experiment's (alpha, orientation); grids in the file must
-//                       hold that S (to float32), so that none is silently ignored.
+//                       hold that S (to their precision, float32 or double), so
+//                       that none is silently ignored.
 // No other grid is allowed. Everything is checked before any work starts, each
 // error naming the file, the grid and the voxel.
 #include <string>
