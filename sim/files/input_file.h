@@ -19,7 +19,7 @@ struct InputFile {
 };
 
 // The line an input adds to a configuration's provenance text, a TOML comment:
-// "\n# <key> read from "<path>": <digest>\n".
+// "\n# <key> read from "<path>": <digest>\n" (`path` as the configuration gives it).
 std::string input_provenance(const std::string& key, const std::string& path, const std::string& digest);
 
 }  // namespace mcref

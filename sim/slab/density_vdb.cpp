@@ -29,10 +29,10 @@ std::string number_text(double v, int digits = 9) {
 
 // The grid's index-to-world map must be the experiment's: scale (hx, hx, hz),
 // axis-aligned, voxel (0, 0, 0) at (0, 0, -bottom); to 1e-6 relative in the
-// scale and 1e-4 of a voxel in the origin, so a map stored in float32 passes,
-// plus 1e-14 of the coordinates' magnitude (OpenVDB's maps round in double at
-// the layer's depth). Read from the map's matrix (world = index M, translation
-// in its last row).
+// scale, and in the origin to 1e-4 of a voxel plus the float32 rounding of the
+// layer's depth (1e-7 of it; a map stored in float32 passes), at most 1e-2 of a
+// voxel, plus 1e-14 of the depth (rounding in double). Read from the map's
+// matrix (world = index M, translation in its last row).
 void check_transform(const std::string& file, const openvdb::GridBase& grid, double hx, double hz, double bottom,
                      const SlabGrid& g, double thickness) {
   const openvdb::math::MapBase::ConstPtr map = grid.transform().baseMap();
@@ -42,8 +42,9 @@ void check_transform(const std::string& file, const openvdb::GridBase& grid, dou
   bool ok = map->isLinear();
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c)
-      ok = ok && std::fabs(m(r, c) - (r == c ? want[c] : 0.0)) <= 1e-6 * (r == c ? want[c] : std::min(hx, hz)) + depth_slack;
-    ok = ok && std::fabs(m(3, r) - origin[r]) <= 1e-4 * want[r] + depth_slack;
+      ok = ok && std::fabs(m(r, c) - (r == c ? want[c] : 0.0)) <= 1e-6 * (r == c ? want[c] : std::min(hx, hz));
+    const double float32 = std::min(1e-4 * want[r] + 1e-7 * std::fabs(origin[r]), 1e-2 * want[r]);
+    ok = ok && std::fabs(m(3, r) - origin[r]) <= float32 + depth_slack;
   }
   if (ok) return;
   const auto t = [](double v) { return number_text(v, 12); };
@@ -64,10 +65,12 @@ void check_transform(const std::string& file, const openvdb::GridBase& grid, dou
 // (a tile exported at another size can otherwise have voxels of the right size).
 void check_metadata(const std::string& file, const openvdb::GridBase& grid, const char* name, double expected,
                     const std::string& key) {
-  const auto m = grid.getMetadata<openvdb::DoubleMetadata>(name);
-  if (!m || std::fabs(m->value() - expected) <= 1e-9 * std::fabs(expected)) return;
+  double value = expected, rel = 1e-9;
+  if (const auto d = grid.getMetadata<openvdb::DoubleMetadata>(name)) value = d->value();
+  if (const auto f = grid.getMetadata<openvdb::FloatMetadata>(name)) value = f->value(), rel = 1e-6;
+  if (std::fabs(value - expected) <= rel * std::fabs(expected)) return;
   throw ConfigError(file, grid.getName(),
-                    std::string("its metadata ") + name + " is " + number_text(m->value()) + " (as exported); the experiment's " +
+                    std::string("its metadata ") + name + " is " + number_text(value) + " (as exported); the experiment's " +
                         key + " is " + number_text(expected));
 }
 

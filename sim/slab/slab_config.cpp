@@ -155,7 +155,8 @@ void read_slab_geometry(TomlReader& g, Experiment& e) {
     s.grid.density_vdb = g.any_string("density_vdb");
     InputFile in{path_beside(e.file, s.grid.density_vdb), ""};
     in.digest = volume::read_density_vdb(in.path, g.file(), g.full("density_vdb"), s);
-    e.text += input_provenance(g.full("density_vdb"), in.path, in.digest);  // the provenance names its content
+    // The provenance names its content, with the path as given (the same from any working directory).
+    e.text += input_provenance(g.full("density_vdb"), s.grid.density_vdb, in.digest);
     e.inputs.push_back(in);
   }
   s.wave_walk = g.string("walk", {"scalar", "wave"}, std::string("scalar")) == "wave";

@@ -132,7 +132,7 @@ def test_density_edited_in_pyopenvdb_is_simulated(cli, tmp_path):
     assert not np.array_equal(original["brdf"].sum, lateral_tables["brdf"].sum)
     assert edited.read_bytes() == before  # the input is untouched
     config = lateral_tables.provenance["config"]
-    assert f'# geometry.density_vdb read from "{edited}": bytes={len(before)} fnv1a64=' in config
+    assert f'# geometry.density_vdb read from "edited.vdb": bytes={len(before)} fnv1a64=' in config
     # An S edited in the file is refused (S comes from alpha and orientation), naming file, grid and voxel.
     by_name["layer0_S_diag"].getAccessor().setValueOn((1, 2, 3), (1.0, 1.0, 1.0))
     vdb.write(str(edited), grids=grids, metadata=meta)

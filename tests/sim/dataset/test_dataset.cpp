@@ -277,7 +277,13 @@ depth_voxels = 2
   // The same files from another working directory (a relative path to the dataset file): the same identity.
   const fs::path cwd = fs::current_path();
   fs::current_path(dir_);
-  const DatasetConfig same = mcref::load_dataset("ds.toml");
+  DatasetConfig same;
+  try {
+    same = mcref::load_dataset("ds.toml");
+  } catch (...) {
+    fs::current_path(cwd);
+    throw;
+  }
   fs::current_path(cwd);
   EXPECT_EQ(same.inputs[0].path, "base/d.vdb");
   EXPECT_EQ(same.experiment_text, a.experiment_text);

@@ -193,7 +193,7 @@ TEST(SlabDensityVdb, ProvenanceRelativePathAndThreads) {
   });
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   const Experiment ex = from_file("lateral.vdb");  // beside from_vdb.toml, in kDir
-  EXPECT_NE(ex.text.find("# geometry.density_vdb read from \"" + path + "\": bytes=" + std::to_string(in.tellg()) +
+  EXPECT_NE(ex.text.find("# geometry.density_vdb read from \"lateral.vdb\": bytes=" + std::to_string(in.tellg()) +
                          " fnv1a64="),
             std::string::npos)
       << ex.text;
