@@ -2,6 +2,7 @@
 // file laid out as export-vdb writes it. An exported slab reads back to the same
 // grids and the same tables, bit for bit; voxels land where the file puts them;
 // every malformed file is refused with its file, grid and voxel named.
+#include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 
 #include <cmath>
@@ -301,11 +302,28 @@ TEST(SlabDensityVdb, TransformsAndMetadata) {
       stripped.erase(at, stripped.find('\n', at) + 1 - at);
     return error_of([&] { return parse_experiment(head + "density_vdb = \"" + name + "\"\n" + stripped + rest, kDir + "i.toml"); });
   };
-  // A thick, tenuous layer over a thin one: the thin layer's origin lies 3e7 deep.
-  EXPECT_EQ(round_trip("deep.vdb", "depth_voxels = 32\n",
-                       "[[geometry.layer]]\nphase = \"isotropic\"\nthickness = 3e7\ndensity = 1e-9\n"
-                       "[[geometry.layer]]\nphase = \"isotropic\"\nthickness = 0.001\ndensity = 1000.0\n"),
-            "");
+  // A thick, tenuous layer over a thin one: the thin layer's origin lies 3e7 deep. Its
+  // grid moved by a tenth of a voxel is still refused there.
+  const std::string deep = "[[geometry.layer]]\nphase = \"isotropic\"\nthickness = 3e7\ndensity = 1e-9\n"
+                           "[[geometry.layer]]\nphase = \"isotropic\"\nthickness = 0.001\ndensity = 1000.0\n";
+  EXPECT_EQ(round_trip("deep.vdb", "depth_voxels = 32\n", deep), "");
+  {
+    openvdb::io::File file(kDir + "deep.vdb");
+    file.open();
+    const openvdb::GridPtrVecPtr grids = file.getGrids();
+    file.close();
+    (*grids)[1]->transform().postTranslate(openvdb::Vec3d(0, 0, 0.1 * 0.001 / 32));
+    write("deep.vdb", *grids);
+    std::string stripped = deep;
+    for (std::size_t at; (at = stripped.find("density = ")) != std::string::npos;)
+      stripped.erase(at, stripped.find('\n', at) + 1 - at);
+    const std::string m = error_of([&] {
+      return parse_experiment("[geometry]\nkind = \"slab\"\nbackend = \"openvdb\"\ndepth_voxels = 32\ndensity_vdb = \"deep.vdb\"\n" +
+                                  stripped + "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 1\n",
+                              kDir + "i.toml");
+    });
+    EXPECT_NE(m.find("deep.vdb: key 'layer1_density': its voxels are"), std::string::npos) << m;
+  }
   // A zero-density layer (allowed by density = 0 too).
   EXPECT_EQ(round_trip("empty.vdb", "",
                        "[[geometry.layer]]\nphase = \"isotropic\"\ndensity = 0.0\n"
