@@ -118,6 +118,13 @@ samples = 1
                           kDir + "iso.toml");
 }
 
+// `layers` without their density lines (what density_vdb replaces).
+std::string without_density(std::string layers) {
+  for (std::size_t at; (at = layers.find("density = ")) != std::string::npos;)
+    layers.erase(at, layers.find('\n', at) + 1 - at);
+  return layers;
+}
+
 // The ConfigError message of parsing `make()`, or "" if it parses.
 std::string error_of(const std::function<Experiment()>& make) {
   try {
@@ -297,10 +304,9 @@ TEST(SlabDensityVdb, TransformsAndMetadata) {
     const std::string rest = "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 1\n";
     const Experiment original = parse_experiment(head + layers + rest, kDir + "o.toml");
     volume::write_vdb(kDir + name, volume::DensityGrids(original.slab));
-    std::string stripped = layers;
-    for (std::size_t at; (at = stripped.find("density = ")) != std::string::npos;)
-      stripped.erase(at, stripped.find('\n', at) + 1 - at);
-    return error_of([&] { return parse_experiment(head + "density_vdb = \"" + name + "\"\n" + stripped + rest, kDir + "i.toml"); });
+    return error_of([&] {
+      return parse_experiment(head + "density_vdb = \"" + name + "\"\n" + without_density(layers) + rest, kDir + "i.toml");
+    });
   };
   // A thick, tenuous layer over a thin one: the thin layer's origin lies 3e7 deep. Its
   // grid moved by a tenth of a voxel is still refused there.
@@ -314,12 +320,9 @@ TEST(SlabDensityVdb, TransformsAndMetadata) {
     file.close();
     (*grids)[1]->transform().postTranslate(openvdb::Vec3d(0, 0, 0.1 * 0.001 / 32));
     write("deep.vdb", *grids);
-    std::string stripped = deep;
-    for (std::size_t at; (at = stripped.find("density = ")) != std::string::npos;)
-      stripped.erase(at, stripped.find('\n', at) + 1 - at);
     const std::string m = error_of([&] {
       return parse_experiment("[geometry]\nkind = \"slab\"\nbackend = \"openvdb\"\ndepth_voxels = 32\ndensity_vdb = \"deep.vdb\"\n" +
-                                  stripped + "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 1\n",
+                                  without_density(deep) + "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 1\n",
                               kDir + "i.toml");
     });
     EXPECT_NE(m.find("deep.vdb: key 'layer1_density': its voxels are"), std::string::npos) << m;
