@@ -207,13 +207,15 @@ std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_b
         if (!narrow) break;
         std::swap(run, wider);
       }
-      double row_hi = 0;
+      double row_hi = 0, row_lo = INFINITY;
       for (const Run& c : run) {
         L.hi.push_back(c.all.hi * (L.s_varies ? c.all.sigma : 1.0) * (1 + kMargin));
         L.lo.push_back(L.s_varies ? 0.0 : c.all.lo * (1 - kMargin));
         row_hi = std::max(row_hi, L.hi.back());
+        row_lo = std::min(row_lo, L.lo.back());
       }
       L.row_hi.push_back(row_hi);
+      L.row_lo.push_back(row_lo);
       L.faces.push_back(r1 == nz ? bottom : bottom - (nz - r1) * hz);
       r0 = r1;
     }

@@ -60,6 +60,7 @@ struct LayerMajorants {
   std::vector<double> faces;      // depths of the cell faces, top to bottom (cells + 1)
   std::vector<double> hi, lo;     // per cell, index (depth_cell * m + j) * m + i
   std::vector<double> row_hi;     // max of hi over each depth row of cells
+  std::vector<double> row_lo;     // min of lo over each depth row of cells
   int reach = 0;                  // r: lateral cells ahead of the photon's (lateral > 1)
   std::array<std::array<int, 2>, 5> box_reach{};  // per box shape: cells ahead along x, along y
   int narrow_reach[2] = {0, 0};   // the narrow boxes' reach across the major axis (shapes 2, 4 and 1, 3)

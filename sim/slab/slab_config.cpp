@@ -169,10 +169,6 @@ void read_slab_geometry(TomlReader& g, Experiment& e) {
   if (s.estimator != SlabEstimator::kAnalog && s.wave_walk)
     g.fail("estimator", "\"" + estimator + "\" needs walk = \"scalar\" (the wave walk has no next-event estimator)");
   for (std::size_t i = 0; i < s.layers.size(); ++i)
-    if (s.estimator != SlabEstimator::kAnalog && s.layers[i].varies_laterally)
-      g.fail("estimator", "\"" + estimator + "\" needs layers whose density varies in depth only; density_vdb's layer " +
-                              std::to_string(i) + " varies laterally (use \"analog\")");
-  for (std::size_t i = 0; i < s.layers.size(); ++i)
     if (!s.grid.openvdb && s.layers[i].profile.kind != DensityProfile::Kind::kConstant)
       throw ConfigError(e.file, "geometry.layer." + std::to_string(i) + ".profile",
                         "a depth profile needs backend = \"openvdb\" (the homogeneous backend takes constant density)");

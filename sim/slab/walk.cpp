@@ -20,7 +20,7 @@ void tally_next_event_mis(const SlabMedium& medium, const Photon& p, Vec3 wi, co
   const PhaseFunction& phase = *medium.layers()[p.layer].phase;
   const bool upper_only = medium.has_substrate();
   const double pdf_u = upper_only ? 1 / (2 * kPi) : 1 / (4 * kPi);
-  if (const double e = escape_probability(medium, p.layer, p.depth, p.d); e > 0) {
+  if (const double e = escape_estimate(medium, p, p.d, rng); e > 0) {
     const double f = phase.eval(wi, p.d);
     out.add(p.d, order, first_class, after * (e * f / (f + pdf_u)), false);
   }
@@ -29,7 +29,7 @@ void tally_next_event_mis(const SlabMedium& medium, const Photon& p, Vec3 wi, co
   if (upper_only) u.z = std::fabs(u.z);
   const double f = phase.eval(wi, u);
   if (!(f > 0)) return;
-  if (const double e = escape_probability(medium, p.layer, p.depth, u); e > 0)
+  if (const double e = escape_estimate(medium, p, u, rng); e > 0)
     out.add(u, order, first_class, before * phase.albedo(wi, u) * (e * f / (f + pdf_u)), false);
 }
 
@@ -83,7 +83,7 @@ int walk(const SlabMedium& medium, FreeFlight& flight, const WalkSettings& s, Ve
     }
     // Before the roulette: its expectation is the same. (With MIS, volume events are tallied above.)
     if (s.estimator == SlabEstimator::kNextEvent || (next_event && f != Flight::kCollision))
-      if (const double e = escape_probability(medium, p.layer, p.depth, p.d); e > 0)
+      if (const double e = escape_estimate(medium, p, p.d, rng); e > 0)
         out.add(p.d, order, first_class, weight * e, delta);
     if (order >= s.roulette_from) {
       const double q = std::min(1.0, weight.max());

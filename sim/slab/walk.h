@@ -20,8 +20,11 @@
 //    in the analog walk, and where it actually leaves it is not tallied again.
 //    Each event's escape is replaced by its expectation given wo, so the
 //    tables' expectations are the same; only the unscattered light (order 0)
-//    stays analog. It draws no extra random numbers, so it walks the same
-//    paths as the analog walk from the same stream.
+//    stays analog. Through layers varying in depth only it draws no extra
+//    random numbers, so it walks the same paths as the analog walk from the
+//    same stream; through laterally varying OpenVDB layers the escape
+//    probability is itself estimated without bias (residual ratio tracking,
+//    escape_estimate), with random numbers of its own.
 //  - next event with MIS: the same, and at volume events a second direction u,
 //    uniform over the directions that can leave (the sphere; the upper
 //    hemisphere over a substrate), tallied with weight x albedo(wi, u) f_p(wi, u)
