@@ -68,7 +68,7 @@ double escape_estimate(const SlabMedium& medium, const Photon& p, Vec3 d, Rng& r
       return;
     }
     if (M.s_varies) throw std::invalid_argument(escape_unsupported(medium));
-    tau += M.factor(d) * control_column(M, from, to) * inv_mu;
+    if (const double column = control_column(M, from, to); column > 0) tau += M.factor(d) * column * inv_mu;
   });
   double estimate = std::exp(-tau);
   for_each_layer_crossed(medium.layers(), p.layer, p.depth, d, [&](int k, double from, double to) {

@@ -24,7 +24,8 @@
 //    random numbers, so it walks the same paths as the analog walk from the
 //    same stream; through laterally varying OpenVDB layers the escape
 //    probability is itself estimated without bias (residual ratio tracking,
-//    escape_estimate), with random numbers of its own.
+//    escape_estimate), with random numbers drawn from the path's stream, so
+//    those paths differ from the analog walk's.
 //  - next event with MIS: the same, and at volume events a second direction u,
 //    uniform over the directions that can leave (the sphere; the upper
 //    hemisphere over a substrate), tallied with weight x albedo(wi, u) f_p(wi, u)

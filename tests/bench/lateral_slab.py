@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""Writes a laterally varying slab experiment for the benchmark scripts: the bench_slab lateral
-field (density times 1 + a cos(2 pi x) cos(2 pi y) on a unit tile of 16 x 16 voxel columns, one
+"""Writes a laterally varying slab experiment for the benchmark scripts: bench_slab's lateral
+field (density times 1 + a cos(2 pi x) cos(2 pi y) on a unit tile of 16 x 16 voxel columns; 16
+voxel intervals in depth here, 32 there, the field being constant in depth; one
 SGGX surface-like layer, alpha 0.5, T rho 5 on average, albedo 0.9), read through
 geometry.density_vdb, and its laterally uniform twin.
 
