@@ -33,6 +33,7 @@ double track_residual(const LayerMajorants& M, const VoxelDensity& voxels, int l
   const bool up = d.z > 0;
   const double f = M.factor(d), shallow = std::min(a, b), deep = std::max(a, b), inv_dz = 1 / d.z;
   const int cells = M.depth_cells();
+  long points = 0;
   // The depth rows in the ray's order: bottom to top going up, top to bottom going down.
   for (int n = 0; n < cells; ++n) {
     const int iz = up ? cells - 1 - n : n;
@@ -44,6 +45,7 @@ double track_residual(const LayerMajorants& M, const VoxelDensity& voxels, int l
     for (double s = (origin.depth - (up ? bottom : top)) * inv_dz;;) {
       s += -std::log1p(-rng.uniform()) / rate;
       if (s >= s_out) break;
+      if (++points > kMaxPoints) return estimate;  // (header)
       const double rho = voxels.density(layer, origin.x + d.x * s, origin.y + d.y * s, origin.depth - d.z * s);
       estimate *= 1 - (rho - lo) / range;
       if (!survives(estimate, rng)) return 0;

@@ -18,7 +18,11 @@
 // roulette: the same expectation, and fewer lookups on rays whose estimate is
 // already small; 0.3 was the best or near it in precision per CPU second among
 // 0.01-1, tests/bench/README.md). It does not bound the lookups of a ray through
-// voxels near the row's least density, whose factors stay near 1.
+// voxels near the row's least density, whose factors stay near 1: a ray almost
+// parallel to the faces along an empty stripe of the tile would look up without
+// end. After kMaxPoints tentative points the estimate so far is returned, as if
+// the rest of the ray were as clear as the part tracked (biased there only;
+// no such ray reaches it but along such a stripe).
 // The bounds are per row of the whole tile: one empty voxel in a row leaves no
 // control part there (the rate is then the row's largest density).
 #include "models/core/rng.h"
@@ -30,6 +34,7 @@
 namespace mcref::volume {
 
 inline constexpr double kRouletteBelow = 0.3;
+inline constexpr long kMaxPoints = 1L << 20;
 
 // The column of the control density (each depth row's row_lo) between depths a and b.
 double control_column(const LayerMajorants& M, double a, double b);

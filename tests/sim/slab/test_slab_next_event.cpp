@@ -346,6 +346,24 @@ TEST(NextEvent, EscapeEstimateThroughLaterallyVaryingLayers) {
   EXPECT_EQ(volume::escape_estimate(empty, volume::Photon{}, down, a), 0.0);  // toward the substrate
 }
 
+// A ray almost parallel to the faces, along the empty stripe of media()[9]'s top
+// layer (x = 0.5, in [3/8, 5/8]): every factor is 1, so only the cap of
+// kMaxPoints ends the tracking (without it, about 1e300 lookups); the estimate is
+// 1, the ray's transmittance.
+TEST(NextEvent, EscapeEstimateEndsAlongAnEmptyStripe) {
+  const volume::SlabMedium empty(parse_experiment("[geometry]\nkind = \"slab\"\n" + media()[9].geometry +
+                                                      "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 1\n",
+                                                  "stripe.toml")
+                                     .slab);
+  ASSERT_EQ(empty.majorants()[0].row_lo[0], 0.0);
+  volume::Photon p;
+  p.x = 0.5;
+  p.y = 0.3;
+  p.depth = 0.3;
+  Rng rng(63);
+  EXPECT_EQ(volume::escape_estimate(empty, p, Vec3{0, 1, 1e-300}, rng), 1.0);
+}
+
 // A layer whose S varies (only C++ code builds one, by editing the grids) has no
 // extinction rho(x) sigma(w): the estimators refuse it, naming the layer
 // (simulate_slab asks before any path).
