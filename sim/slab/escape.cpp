@@ -35,42 +35,45 @@ double exact_optical_depth(const SlabMedium& medium, int k, double from, double 
   return l.density > 0 ? l.density * l.phase->sigma(d) * (std::fabs(to - from) * inv_mu) : 0.0;
 }
 
+// The optical depth from (layer, depth) along d to the face the ray leaves by
+// (d.z != 0), in closed form: exact through the layers varying in depth only (and
+// homogeneous layers), the control part (sim/slab/residual_ratio_tracking.h)
+// through laterally varying ones; `lateral` says whether the ray crosses any.
+double closed_form_optical_depth(const SlabMedium& medium, int layer, double depth, Vec3 d, bool& lateral) {
+  const double inv_mu = 1 / std::fabs(d.z);
+  double tau = 0;
+  lateral = false;
+  for_each_layer_crossed(medium.layers(), layer, depth, d, [&](int k, double from, double to) {
+    if (!varies_laterally(medium, k)) {
+      tau += exact_optical_depth(medium, k, from, to, d, inv_mu);
+      return;
+    }
+    const LayerMajorants& M = medium.majorants()[k];
+    if (M.s_varies) throw std::invalid_argument(escape_unsupported(medium));
+    lateral = true;
+    if (const double column = control_column(M, from, to); column > 0) tau += M.factor(d) * column * inv_mu;
+  });
+  return tau;
+}
+
 }  // namespace
 
 double escape_probability(const SlabMedium& medium, int layer, double depth, Vec3 d) {
   if (d.z == 0 || (d.z < 0 && medium.has_substrate())) return 0;
-  const double inv_mu = 1 / std::fabs(d.z);
-  double tau = 0;
-  for_each_layer_crossed(medium.layers(), layer, depth, d, [&](int k, double from, double to) {
-    if (varies_laterally(medium, k))
-      throw std::invalid_argument("escape_probability: layer " + std::to_string(k) +
-                                  " varies laterally; its escape is estimated (escape_estimate)");
-    tau += exact_optical_depth(medium, k, from, to, d, inv_mu);
-  });
+  bool lateral = false;
+  const double tau = closed_form_optical_depth(medium, layer, depth, d, lateral);
+  if (lateral)
+    throw std::invalid_argument("escape_probability: the ray crosses a laterally varying layer; its escape is "
+                                "estimated (escape_estimate)");
   return std::exp(-tau);
 }
 
 double escape_estimate(const SlabMedium& medium, const Photon& p, Vec3 d, Rng& rng) {
   if (d.z == 0 || (d.z < 0 && medium.has_substrate())) return 0;
   bool lateral = false;
-  if (medium.grids())
-    for_each_layer_crossed(medium.layers(), p.layer, p.depth, d,
-                           [&](int k, double, double) { lateral = lateral || varies_laterally(medium, k); });
-  if (!lateral) return escape_probability(medium, p.layer, p.depth, d);
-  // The optical depth in closed form: the layers varying in depth only, and the
-  // control part of the others; then their residual parts, tracked.
-  const double inv_mu = 1 / std::fabs(d.z);
-  double tau = 0;
-  for_each_layer_crossed(medium.layers(), p.layer, p.depth, d, [&](int k, double from, double to) {
-    const LayerMajorants& M = medium.majorants()[k];
-    if (!varies_laterally(medium, k)) {
-      tau += exact_optical_depth(medium, k, from, to, d, inv_mu);
-      return;
-    }
-    if (M.s_varies) throw std::invalid_argument(escape_unsupported(medium));
-    if (const double column = control_column(M, from, to); column > 0) tau += M.factor(d) * column * inv_mu;
-  });
-  double estimate = std::exp(-tau);
+  double estimate = std::exp(-closed_form_optical_depth(medium, p.layer, p.depth, d, lateral));
+  if (!lateral) return estimate;
+  // The residual parts of the laterally varying layers, tracked.
   for_each_layer_crossed(medium.layers(), p.layer, p.depth, d, [&](int k, double from, double to) {
     if (estimate > 0 && varies_laterally(medium, k))
       estimate = track_residual(medium.majorants()[k], *medium.voxels(), k, p, d, from, to, estimate, rng);

@@ -140,6 +140,14 @@ const std::vector<Medium>& media() {
   return m;
 }
 
+// The transport view of a medium (its geometry alone).
+volume::SlabMedium slab_medium(const Medium& m) {
+  return volume::SlabMedium(parse_experiment("[geometry]\nkind = \"slab\"\n" + m.geometry +
+                                                 "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 1\n",
+                                             "medium.toml")
+                                .slab);
+}
+
 Experiment experiment(const Medium& m, const std::string& estimator, int seed, const std::string& measure_extra = "") {
   return slab_test::four_directions("estimator = \"" + estimator + "\"\n" + m.geometry, seed, measure_extra);
 }
@@ -264,14 +272,7 @@ TEST(NextEvent, EscapeProbabilityThroughDepthProfiles) {
 // varying in depth only, the estimate is escape_probability, with no random
 // number drawn.
 TEST(NextEvent, EscapeEstimateThroughLaterallyVaryingLayers) {
-  const auto medium_of = [](const Medium& m) {
-    return volume::SlabMedium(
-        parse_experiment("[geometry]\nkind = \"slab\"\n" + m.geometry +
-                             "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 1\n",
-                         "lateral.toml")
-            .slab);
-  };
-  const volume::SlabMedium fibre = medium_of(media()[8]), empty = medium_of(media()[9]);
+  const volume::SlabMedium fibre = slab_medium(media()[8]), empty = slab_medium(media()[9]);
   const auto quadrature = [](const volume::SlabMedium& m, const volume::Photon& p, Vec3 d) {
     const double gx[3] = {-std::sqrt(0.6), 0, std::sqrt(0.6)}, gw[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
     double tau = 0;
@@ -351,10 +352,7 @@ TEST(NextEvent, EscapeEstimateThroughLaterallyVaryingLayers) {
 // kMaxPoints ends the tracking (without it, about 1e300 lookups); the estimate is
 // 1, the ray's transmittance.
 TEST(NextEvent, EscapeEstimateEndsAlongAnEmptyStripe) {
-  const volume::SlabMedium empty(parse_experiment("[geometry]\nkind = \"slab\"\n" + media()[9].geometry +
-                                                      "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 1\n",
-                                                  "stripe.toml")
-                                     .slab);
+  const volume::SlabMedium empty = slab_medium(media()[9]);
   ASSERT_EQ(empty.majorants()[0].row_lo[0], 0.0);
   volume::Photon p;
   p.x = 0.5;
