@@ -153,6 +153,7 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
   SimulateOptions sim;
   sim.threads = o.threads;
   sim.quiet = true;
+  sim.tables = c.tables;  // the others are not computed where they can be left out
   auto compute = [&](std::int64_t i) {
     const EntryPlan p = plan_entry(c, i);
     const Experiment ex = entry_experiment(c, p);

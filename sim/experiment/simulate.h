@@ -16,6 +16,11 @@ struct SimulateOptions {
   // Ranks the batches are spread over (sim/parallel/batch_loop.h); the
   // tables are complete on rank 0 only.
   const Communicator* ranks = &Communicator::self();
+  // The tables to return, by name (empty: all). Those of the others that can
+  // be left out are neither held nor computed (slab BRDF tables); the
+  // returned tables are the same bits either way. A name the experiment does
+  // not write is an error.
+  std::vector<std::string> tables;
 };
 
 struct SimulateSummary {

@@ -52,20 +52,20 @@ Table energy_table(const Measure& m) {
 
 }  // namespace
 
-BatchLoop::Tables slab_tables(const Experiment& ex) {
+BatchLoop::Tables slab_tables(const Experiment& ex, const std::vector<std::string>& keep) {
   BatchLoop::Tables tables;
   for (const Measure& m : ex.measures) {
-    tables.push_back(make_brdf_tables(m.name, m.theta_i, m.phi_i, slab_layout(m, ex)));
+    tables.push_back(make_brdf_tables(m.name, m.theta_i, m.phi_i, slab_layout(m, ex), keep));
     if (writes_energy_table(m, ex)) tables.back().push_back(energy_table(m));
   }
   return tables;
 }
 
-std::vector<Table> simulate_slab(const Experiment& ex, const BatchLoop& loop) {
+std::vector<Table> simulate_slab(const Experiment& ex, const BatchLoop& loop, const std::vector<std::string>& keep) {
   const volume::SlabMedium medium(ex.slab);
   if (ex.slab.estimator != SlabEstimator::kAnalog)
     if (const std::string why = volume::escape_unsupported(medium); !why.empty()) throw std::invalid_argument(why);
-  BatchLoop::Tables tables = slab_tables(ex);
+  BatchLoop::Tables tables = slab_tables(ex, keep);
   loop.run(ex.run.batches, tables, [&](int b, BatchLoop::Tables& into) {
     for (std::size_t k = 0; k < ex.measures.size(); ++k) {
       const Measure& m = ex.measures[k];

@@ -12,7 +12,7 @@ BrdfBatch::BrdfBatch(const BrdfLayout& layout, double paths, std::vector<Table>&
   for (std::size_t i = 0; i < count_; ++i) {
     const bool binned = i % (C + 3) <= static_cast<std::size_t>(C);
     const std::size_t per_direction = binned ? static_cast<std::size_t>(T) * l_.phi_bins * 3 : static_cast<std::size_t>(C + 1) * 3;
-    if (tables_[i].cells() != directions_ * per_direction) throw std::logic_error("brdf table " + tables_[i].name + " does not match the layout");
+    if (tables_[i].cells() != 0 && tables_[i].cells() != directions_ * per_direction) throw std::logic_error("brdf table " + tables_[i].name + " does not match the layout");
   }
   seen_.assign(directions_, 0);
   const double fold = l_.folded ? 2.0 : 1.0;
@@ -31,6 +31,7 @@ void BrdfBatch::add(std::size_t d, const std::vector<double>& s) {
     throw std::logic_error("brdf batch: a direction out of range or added twice, or sums of another layout");
   seen_[d] = 1;
   const auto add_cell = [](Table& table, std::size_t i, double x) {
+    if (table.sum.empty()) return;  // left out (make_brdf_tables' keep)
     table.sum[i] += x;
     table.sum_sq[i] += x * x;
   };
@@ -74,7 +75,8 @@ void BrdfBatch::add(std::size_t d, const std::vector<double>& s) {
 void BrdfBatch::close() {
   for (char seen : seen_)
     if (!seen) throw std::logic_error("brdf batch closed with a direction missing");
-  for (std::size_t i = 0; i < count_; ++i) ++tables_[i].batches;
+  for (std::size_t i = 0; i < count_; ++i)
+    if (tables_[i].cells() != 0) ++tables_[i].batches;
   seen_.assign(directions_, 0);
 }
 

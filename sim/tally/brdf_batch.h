@@ -4,7 +4,8 @@
 // independent (sum += x, sum_sq += x^2 per cell), so adding a direction's cells
 // as soon as they are known gives the same bits as adding the whole batch at
 // once, without holding every direction's sums (for 32 x 32 directions and
-// 32 x 32 bins, hundreds of MB a batch).
+// 32 x 32 bins, hundreds of MB a batch). Tables left out (made without cells,
+// make_brdf_tables' `keep`) are left alone.
 #include <cstddef>
 #include <vector>
 

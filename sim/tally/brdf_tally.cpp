@@ -61,10 +61,22 @@ Axis theta_o_axis(const BrdfLayout& l, int hemisphere) {
   return Axis::bins("theta_o", "rad", e);
 }
 
+// A table with its cells, or without them if `keep` names tables but not this one.
+Table kept_or_left_out(std::string name, std::string quantity, std::vector<Axis> axes, const std::vector<std::string>& keep) {
+  if (keep.empty() || std::find(keep.begin(), keep.end(), name) != keep.end())
+    return Table(std::move(name), std::move(quantity), std::move(axes));
+  Table t;
+  t.name = std::move(name);
+  t.quantity = std::move(quantity);
+  t.axes = std::move(axes);
+  return t;
+}
+
 }  // namespace
 
 std::vector<Table> make_brdf_tables(const std::string& name, const std::vector<double>& theta_i,
-                                    const std::vector<double>& phi_i, const BrdfLayout& l) {
+                                    const std::vector<double>& phi_i, const BrdfLayout& l,
+                                    const std::vector<std::string>& keep) {
   std::vector<Table> out;
   const Axis ti = Axis::points("theta_i", "rad", theta_i), pi = Axis::points("phi_i", "rad", phi_i);
   const Axis phi = Axis::uniform_bins("phi", "rad", 0, l.folded ? kPi : 2 * kPi, l.phi_bins);
@@ -80,8 +92,8 @@ std::vector<Table> make_brdf_tables(const std::string& name, const std::vector<d
     std::vector<std::string> parts{"total"};
     for (const std::string& c : l.component_names()) parts.push_back(c);
     for (const std::string& part : parts) {
-      Table t(part == "total" ? base : base + "_" + part, h == 0 ? "brdf" : "btdf",
-              {ti, pi, theta_o_axis(l, h), phi, channel});
+      Table t = kept_or_left_out(part == "total" ? base : base + "_" + part, h == 0 ? "brdf" : "btdf",
+                                 {ti, pi, theta_o_axis(l, h), phi, channel}, keep);
       t.units = "1/sr";
       t.description = what + " f (without the cosine), cosine-weighted bin average; " +
                       (part == "total" ? std::string("all orders, delta lobes excluded") : "component " + part);
@@ -90,17 +102,18 @@ std::vector<Table> make_brdf_tables(const std::string& name, const std::vector<d
       t.attributes["phi"] = l.folded ? "phi_o - phi_i folded into [0, pi]; 0 = back toward the light"
                                      : "phi_o - phi_i in [0, 2pi); 0 = back toward the light";
       t.attributes["delta_lobes"] = "excluded from the bins; their energy is in " + base + "_delta";
-      out.push_back(t);
+      out.push_back(std::move(t));
     }
     for (const char* kind : {"_albedo", "_delta"}) {
-      Table t(base + kind, h == 0 ? "albedo" : "transmittance", {ti, pi, Axis::points("component", "index", comps), channel});
+      Table t = kept_or_left_out(base + kind, h == 0 ? "albedo" : "transmittance",
+                                 {ti, pi, Axis::points("component", "index", comps), channel}, keep);
       t.units = "1";
       t.description = std::string(kind) == "_albedo"
                           ? what + " directional energy per component (delta lobes included)"
                           : what + " energy in delta lobes (exact mirror / unscattered) per component";
       t.attributes["components"] = names;
       t.attributes["total"] = "every path; the unscattered light (order 0) is in the total only, in no component";
-      out.push_back(t);
+      out.push_back(std::move(t));
     }
   }
   return out;

@@ -64,8 +64,11 @@ class BrdfAccumulator {
 //   <name><hemi>_<component>          the same per component
 //   <name><hemi>_albedo               energy per (theta_i, phi_i, component + total, channel), delta included
 //   <name><hemi>_delta                delta-lobe energy per (theta_i, phi_i, component + total, channel)
+// Tables that `keep` does not name (when it names any) are left out: made
+// without cells, so they are neither held nor filled (BrdfBatch skips them).
 std::vector<Table> make_brdf_tables(const std::string& name, const std::vector<double>& theta_i,
-                                    const std::vector<double>& phi_i, const BrdfLayout& layout);
+                                    const std::vector<double>& phi_i, const BrdfLayout& layout,
+                                    const std::vector<std::string>& keep = {});
 // True for the <name><hemi>_delta tables (delta-lobe energies, not densities).
 inline bool is_delta_table(const std::string& table_name) {
   const std::string tail = "_delta";

@@ -4,11 +4,14 @@
 // projected solid angle), components add up to the total, the albedo holds
 // delta lobes too and the total the unscattered light. Against the whole-batch
 // conversion it replaced: the same bits, whatever order the directions come in.
-// A batch with a direction missing or added twice, or tables of another
-// layout, are refused.
+// Tables left out (make_brdf_tables' keep) have no cells and stay so, and the
+// others get the same bits. A batch with a direction missing or added twice,
+// or tables of another layout, are refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <stdexcept>
 #include <vector>
 
@@ -185,6 +188,44 @@ TEST(BrdfBatch, SameBitsAsTheWholeBatchConversion) {
       EXPECT_EQ(other.batches, 0);
       EXPECT_EQ(other.sum, std::vector<double>(2, 0.0));
     }
+}
+
+// 2 batches into all the tables and into tables of which keep names 4 (a
+// total, two components of either hemisphere, an albedo): the 4 the same
+// bits, the others without cells and never counted.
+TEST(BrdfBatch, TablesLeftOutStayEmptyAndTheOthersKeepTheirBits) {
+  const BrdfLayout l = layout();
+  const std::vector<std::string> keep{"brdf_btdf_order3", "brdf", "brdf_order1_volume", "brdf_btdf_albedo"};
+  std::vector<Table> all = make_brdf_tables("brdf", kThetaI, kPhiI, l);
+  std::vector<Table> some = make_brdf_tables("brdf", kThetaI, kPhiI, l, keep);
+  ASSERT_EQ(all.size(), some.size());
+  Rng rng(10);
+  for (int b = 0; b < 2; ++b) {
+    BrdfBatch full(l, 300, all), part(l, 300, some);
+    for (std::size_t d = 0; d < kThetaI.size() * kPhiI.size(); ++d) {
+      const std::vector<double> s = random_sums(l, rng);
+      full.add(d, s);
+      part.add(d, s);
+    }
+    full.close();
+    part.close();
+  }
+  int kept = 0;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    EXPECT_EQ(all[i].name, some[i].name);
+    EXPECT_EQ(all[i].axes.size(), some[i].axes.size()) << some[i].name;  // the outline stays
+    if (std::find(keep.begin(), keep.end(), some[i].name) != keep.end()) {
+      ++kept;
+      EXPECT_EQ(some[i].batches, 2) << some[i].name;
+      EXPECT_EQ(all[i].sum, some[i].sum) << some[i].name;
+      EXPECT_EQ(all[i].sum_sq, some[i].sum_sq) << some[i].name;
+    } else {
+      EXPECT_EQ(some[i].cells(), 0u) << some[i].name;
+      EXPECT_TRUE(some[i].sum_sq.empty()) << some[i].name;
+      EXPECT_EQ(some[i].batches, 0) << some[i].name;
+    }
+  }
+  EXPECT_EQ(kept, 4);
 }
 
 TEST(BrdfBatch, RefusesAMissingOrRepeatedDirectionAndOtherLayouts) {
