@@ -31,6 +31,11 @@ const char* kLeanLayout =
     "/parameters/labels/<column>), /parameters/names [columns], /parameters/index [rows] entry index, "
     "/parameters/seed [rows], /parameters/assignments [rows]; /entries/<index>/<table>/{value, stderr} "
     "float32 and axes as in mcref table files (lean storage: no sum, sum_sq)";
+const char* kSumsLayout =
+    "/parameters/values [rows, columns] float64 (NaN: does not apply; categorical columns: index into "
+    "/parameters/labels/<column>), /parameters/names [columns], /parameters/index [rows] entry index, "
+    "/parameters/seed [rows], /parameters/assignments [rows]; /entries/<index>/<table>/{sum, sum_sq, axes} "
+    "as in mcref table files (sums storage: value = sum / batches, stderr from sum_sq, not stored)";
 
 }  // namespace
 
@@ -75,8 +80,9 @@ DatasetWriter::DatasetWriter(const std::string& path, const DatasetHeader& heade
     h5::write_string_attr(root, "experiment_config", header.experiment_config);
     h5::write_string_attr(root, "experiment_file", header.experiment_file);
     h5::write_string_attr(root, "conventions", table_conventions());
-    h5::write_string_attr(root, "layout", header.lean ? kLeanLayout : kLayout);
-    if (header.lean) h5::write_string_attr(root, "storage", "lean");
+    if (header.lean && header.sums) throw std::logic_error("a dataset file is lean or sums, not both");
+    h5::write_string_attr(root, "layout", header.lean ? kLeanLayout : header.sums ? kSumsLayout : kLayout);
+    if (header.lean || header.sums) h5::write_string_attr(root, "storage", header.lean ? "lean" : "sums");
     h5::Handle entries = h5::create_group(file_, "entries");
     entries_ = H5Gopen2(file_, "entries", H5P_DEFAULT);
   } catch (...) {
@@ -122,7 +128,8 @@ void DatasetWriter::write_entry(const DatasetEntry& e) {
   std::vector<const Table*> tables;
   for (const Table& t : e.tables) tables.push_back(&t);
   std::sort(tables.begin(), tables.end(), [](const Table* a, const Table* b) { return a->name < b->name; });
-  for (const Table* t : tables) write_table_group(g, *t, header_.compression, header_.lean);
+  const TableStorage storage = header_.lean ? TableStorage::kLean : header_.sums ? TableStorage::kSums : TableStorage::kFull;
+  for (const Table* t : tables) write_table_group(g, *t, header_.compression, storage);
 }
 
 void DatasetWriter::commit() {
@@ -187,8 +194,10 @@ DatasetReader::DatasetReader(const std::string& path) : path_(path) {
     h.experiment_file = h5::read_string_attr(root, "experiment_file");
     if (h5::has_attr(root, "storage")) {
       const std::string storage = h5::read_string_attr(root, "storage");
-      if (storage != "lean") throw ConfigError(path, "storage", "is \"" + storage + "\"; this mcref knows \"lean\" (or none: full)");
-      h.lean = true;
+      if (storage != "lean" && storage != "sums")
+        throw ConfigError(path, "storage", "is \"" + storage + "\"; this mcref knows \"lean\" and \"sums\" (or none: full)");
+      h.lean = storage == "lean";
+      h.sums = storage == "sums";
     }
     h5::Handle p = h5::open_group(file_, "parameters");
     h.columns = h5::read_strings(p, "names");

@@ -6,8 +6,8 @@
 //                           git_commit, sim_fingerprint, seed, entries (in the whole dataset),
 //                           shard ("all", "K/N" or "part"), compression,
 //                           dataset_config, experiment_config, experiment_file,
-//                           conventions, layout; storage = "lean" in lean files
-//                           (absent: full)
+//                           conventions, layout; storage = "lean" in lean files,
+//                           "sums" in parts (absent: full)
 //   /parameters/values      float64 [rows, columns]: one row per entry in this file,
 //                           NaN where a parameter does not apply (e.g. layer 1
 //                           of a 1-layer entry); categorical columns hold an index
@@ -23,7 +23,9 @@
 //                           sum_sq, axes as dimension scales, <axis>_bounds); in
 //                           lean files value and stderr only, as float32
 //                           (sim/hdf5/table_group.h): such files cannot be merged
-//                           or resumed, entry() refuses them
+//                           or resumed, entry() refuses them; in sums files
+//                           (storage = "sums": the parts of a dataset being
+//                           computed) sum and sum_sq only
 // No wall-clock dates nor command lines are stored and object time tracking
 // is off, so a file's bytes are a function of its content; the writer takes
 // entries in increasing index order (canonical). Files are written to a
@@ -54,6 +56,9 @@ struct DatasetHeader {
   std::vector<std::string> columns;
   std::map<std::string, std::vector<std::string>> labels;  // categorical columns
   bool lean = false;  // float32 value and stderr, no sums (final files only)
+  // sum and sum_sq only, value and stderr derived when read (the parts of a
+  // dataset being computed: half the bytes); not compared by difference().
+  bool sums = false;
 
   // Same dataset (config, base, seed, simulation fingerprint): shards and parts may be combined.
   bool same_dataset(const DatasetHeader& o) const;

@@ -93,7 +93,8 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
   const std::string shard = o.shards == 1 ? "all" : std::to_string(o.shard) + "/" + std::to_string(o.shards);
   DatasetHeader final_header = dataset_header(c, shard);
   final_header.lean = o.lean;
-  const DatasetHeader part_header = dataset_header(c, "part");
+  DatasetHeader part_header = dataset_header(c, "part");
+  part_header.sums = true;  // the sums alone: half the bytes to write, keep and read back
   // This shard's entries are index(k) = shard + k shards, k < s.entries; each
   // is planned from its index when needed, so nothing scales with the
   // declared size but the entries a run computes.
@@ -241,6 +242,7 @@ std::int64_t merge_datasets(const std::vector<std::string>& inputs, const std::s
   h.shard = "all";
   h.git_commit = mcref_git_commit();  // of the build that writes the file, as after a resume: shards agree on the rest
   h.lean = lean;
+  h.sums = false;  // (parts given as shards hold sums only; the result is full or lean)
   Progress progress("merge", static_cast<double>(n), quiet);
   DatasetWriter w(output, h);
   for (std::int64_t i = 0; i < n; ++i) {

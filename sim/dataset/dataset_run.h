@@ -21,7 +21,7 @@ struct DatasetRunOptions {
   int threads = 0;               // 0: the experiment's run.threads (0 there: all cores)
   bool quiet = false;
   std::int64_t stop_after = -1;  // compute at most this many new entries, then stop without assembling
-  bool lean = false;             // OUTPUT in lean storage (the parts stay full, so resume works)
+  bool lean = false;             // OUTPUT in lean storage (the parts keep the sums, so resume works)
   // Ranks the entries are spread over (sim/dataset/entry_scheduler.h): each
   // writes the parts it computes; rank 0 scans the parts and assembles OUTPUT
   // on a thread of its own as they are finished.

@@ -40,7 +40,8 @@ std::vector<std::string> axis_labels(const Table& t, const Axis& a) {
   return out.size() == a.size() ? out : std::vector<std::string>{};
 }
 
-void write_table_group(hid_t parent, const Table& t, int compression, bool lean) {
+void write_table_group(hid_t parent, const Table& t, int compression, TableStorage storage) {
+  const bool lean = storage == TableStorage::kLean, sums = storage == TableStorage::kSums;
   h5::Handle group = h5::create_group(parent, t.name);
   h5::write_string_attr(group, "quantity", t.quantity);
   h5::write_string_attr(group, "units", t.units);
@@ -50,18 +51,23 @@ void write_table_group(hid_t parent, const Table& t, int compression, bool lean)
   for (const Axis& a : t.axes) axes += (axes.empty() ? "" : ",") + a.name;
   h5::write_string_attr(group, "axes", axes);
   for (const auto& [k, v] : t.attributes) h5::write_string_attr(group, k, v);
-  if (lean) h5::write_string_attr(group, "storage", "lean");
+  if (lean || sums) h5::write_string_attr(group, "storage", lean ? "lean" : "sums");
   std::vector<hsize_t> dims;
   for (std::size_t n : t.shape()) dims.push_back(n);
   std::vector<h5::Handle> data;
+  std::vector<int> kinds;  // of each dataset: 0 value, 1 stderr, 2 sum, 3 sum_sq
   if (lean) {
     data.push_back(h5::write_floats(group, "value", dims, t.values(), compression));
     data.push_back(h5::write_floats(group, "stderr", dims, t.stderrs(), compression));
+    kinds = {0, 1};
   } else {
-    data.push_back(h5::write_doubles(group, "value", dims, t.values(), compression));
-    data.push_back(h5::write_doubles(group, "stderr", dims, t.stderrs(), compression));
+    if (!sums) {
+      data.push_back(h5::write_doubles(group, "value", dims, t.values(), compression));
+      data.push_back(h5::write_doubles(group, "stderr", dims, t.stderrs(), compression));
+    }
     data.push_back(h5::write_doubles(group, "sum", dims, t.sum, compression));
     data.push_back(h5::write_doubles(group, "sum_sq", dims, t.sum_sq, compression));
+    kinds = sums ? std::vector<int>{2, 3} : std::vector<int>{0, 1, 2, 3};
   }
   // CF names: units and long_name on the data, auxiliary label coordinates.
   std::string labelled;
@@ -70,8 +76,8 @@ void write_table_group(hid_t parent, const Table& t, int compression, bool lean)
   const char* long_names[] = {"mean over batches", "standard error of the mean", "sum over batches",
                               "sum of squares over batches"};
   for (std::size_t i = 0; i < data.size(); ++i) {
-    h5::write_string_attr(data[i], "long_name", std::string(long_names[i]) + " of " + t.quantity);
-    if (i < 3) h5::write_string_attr(data[i], "units", t.units);  // (sum_sq: the square of units)
+    h5::write_string_attr(data[i], "long_name", std::string(long_names[kinds[i]]) + " of " + t.quantity);
+    if (kinds[i] < 3) h5::write_string_attr(data[i], "units", t.units);  // (sum_sq: the square of units)
     if (!labelled.empty()) h5::write_string_attr(data[i], "coordinates", labelled);
   }
   // The size-2 dimension of the bounds, in groups with a binned axis.
@@ -112,12 +118,11 @@ std::string table_group_storage(hid_t parent, const std::string& name) {
 
 Table read_table_group(hid_t parent, const std::string& name) {
   h5::Handle group = h5::open_group(parent, name);
-  if (h5::has_attr(group, "storage")) {
-    const std::string storage = h5::read_string_attr(group, "storage");
-    if (storage == "lean")
-      throw std::runtime_error("table " + name + " is lean storage (float32 value and stderr, no sums): it cannot be merged or resumed");
+  const std::string storage = h5::has_attr(group, "storage") ? h5::read_string_attr(group, "storage") : "full";
+  if (storage == "lean")
+    throw std::runtime_error("table " + name + " is lean storage (float32 value and stderr, no sums): it cannot be merged or resumed");
+  if (storage != "full" && storage != "sums")
     throw std::runtime_error("table " + name + " has an unknown storage \"" + storage + "\"");
-  }
   std::vector<Axis> axes;
   std::stringstream ss(h5::read_string_attr(group, "axes"));
   for (std::string a; std::getline(ss, a, ',');) {
@@ -139,9 +144,10 @@ Table read_table_group(hid_t parent, const std::string& name) {
   t.sum = h5::read_doubles(group, "sum");
   t.sum_sq = h5::read_doubles(group, "sum_sq");
   if (t.sum.size() != t.cells() || t.sum_sq.size() != t.cells()) throw std::runtime_error("table shape mismatch");
-  // value and stderr are derived from the sums; a file whose stored ones are
-  // missing or differ (bit for bit, NaN as NaN) is damaged or not mcref's.
+  // value and stderr are derived from the sums; a full table whose stored ones
+  // are missing or differ (bit for bit, NaN as NaN) is damaged or not mcref's.
   for (const char* derived : {"value", "stderr"}) {
+    if (storage == "sums") break;  // not stored
     if (!h5::exists(group, derived)) throw std::runtime_error("table " + name + " has no " + derived + " dataset");
     const std::vector<double> stored = h5::read_doubles(group, derived);
     if (stored.size() != t.cells()) throw std::runtime_error("table " + name + ": " + derived + " has the wrong shape");

@@ -7,10 +7,12 @@
 // Files from before the CF names (<axis>_edges, attribute unit) still read.
 // Written without time tracking (see h5_util.h), optionally gzip-compressed.
 //
-// Lean storage (paper-scale datasets that will not be merged further): value
-// and stderr as float32, no sum nor sum_sq, and the attribute storage = "lean"
-// marking it. Such a table cannot be read back as a Table (the sums are gone):
-// read_table_group refuses it with a message that says so.
+// Two other storages, each marked by the group's attribute storage:
+// - "lean" (paper-scale datasets that will not be merged further): value and
+//   stderr as float32, no sum nor sum_sq. Such a table cannot be read back as a
+//   Table (the sums are gone): read_table_group refuses it, saying so.
+// - "sums" (the parts of a dataset being computed, read back by mcref only):
+//   sum and sum_sq alone, half the bytes; value and stderr follow from them.
 #include <hdf5.h>
 
 #include <string>
@@ -20,8 +22,9 @@
 
 namespace mcref {
 
-void write_table_group(hid_t parent, const Table& table, int compression, bool lean = false);
-// The group's storage attribute: "lean", or "full" when absent.
+enum class TableStorage { kFull, kLean, kSums };
+void write_table_group(hid_t parent, const Table& table, int compression, TableStorage storage = TableStorage::kFull);
+// The group's storage attribute: "lean" or "sums", or "full" when absent.
 std::string table_group_storage(hid_t parent, const std::string& name);
 Table read_table_group(hid_t parent, const std::string& name);
 // Text labels of an index axis, stored as the auxiliary coordinate

@@ -41,6 +41,15 @@ DATASETS = {"spongecake_1layer.toml": 4000, "spongecake_2layer.toml": 12000}
 ORDERS = ["order2", "order3", "order4plus"]
 
 
+def value_and_stderr(table):
+    """A part's table (its sums only, storage "sums"): the mean over batches and its standard error."""
+    import numpy as np
+    n = float(table.attrs["batches"])
+    s, ss = table["sum"][()], table["sum_sq"][()]
+    mean = s / n
+    return mean, np.sqrt(np.maximum(0.0, (ss - n * mean * mean) / (n - 1)) / n)
+
+
 def relative_errors(part):
     """Cells the multiple scattering reaches; median relative stderr there, and over the total's cells."""
     import h5py
@@ -49,10 +58,11 @@ def relative_errors(part):
         (entry,) = f["entries"].values()
         ms, total = [], []
         for hemi in ("brdf", "brdf_btdf"):
-            v = sum(entry[f"{hemi}_{o}"]["value"][()] for o in ORDERS)
-            se = np.sqrt(sum(entry[f"{hemi}_{o}"]["stderr"][()] ** 2 for o in ORDERS))
+            orders = [value_and_stderr(entry[f"{hemi}_{o}"]) for o in ORDERS]
+            v = sum(o[0] for o in orders)
+            se = np.sqrt(sum(o[1] ** 2 for o in orders))
             ms.append((se[v > 0] / v[v > 0]).ravel())
-            tv, ts = entry[hemi]["value"][()], entry[hemi]["stderr"][()]
+            tv, ts = value_and_stderr(entry[hemi])
             total.append((ts[tv > 0] / tv[tv > 0]).ravel())
     ms, total = np.concatenate(ms), np.concatenate(total)
     return ms.size, float(np.median(ms)), float(np.median(total))

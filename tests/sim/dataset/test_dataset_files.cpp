@@ -1,6 +1,7 @@
 // mcref dataset / mcref merge: the file of a run is the same byte for byte
-// whatever the thread count, after an interruption and resume, and when
-// assembled from shards by merge; entries hold what `mcref simulate` with the
+// whatever the thread count, after an interruption and resume (from parts
+// holding sums, or full parts of earlier builds), and when assembled from
+// shards by merge; entries hold what `mcref simulate` with the
 // entry's assignments gives; bad shard sets and bad input are one-line errors
 // with a non-zero exit and no output file.
 #include <gtest/gtest.h>
@@ -21,6 +22,7 @@
 #include "sim/dataset/dataset_run.h"
 #include "sim/experiment/config_error.h"
 #include "sim/experiment/simulate.h"
+#include "sim/hdf5/h5_util.h"
 #include "sim/hdf5/table_file.h"
 
 namespace fs = std::filesystem;
@@ -215,6 +217,60 @@ TEST_F(DatasetRun, ThreadCountResumeShardsAndMergeGiveTheSameBytes) {
   ASSERT_EQ(cli("dataset ds.toml -o c1.h5 --shard 1/2 --threads 2 --quiet", &err), 0) << err;
   ASSERT_EQ(cli("merge c1.h5 c0.h5 -o cli.h5 --quiet", &err), 0) << err;
   EXPECT_EQ(std::system(("cmp -s '" + path("cli.h5") + "' '" + path("full.h5") + "'").c_str()), 0);
+}
+
+// A part holds its tables' sums only (storage "sums" on the root and on each
+// table, no value nor stderr dataset) and reads back as the entry the
+// assembled file holds (the same sums and batches). A part in full storage
+// (as builds before this one wrote them) still resumes into the same bytes,
+// and parts merged by hand make a full file, the same bytes again.
+TEST_F(DatasetRun, PartsHoldTheSumsAndFullPartsStillResume) {
+  run("full.h5", 0, 1, 1);
+  const std::string reference = slurp(path("full.h5"));
+  run("p.h5", 0, 1, 1, 2);
+  const std::string part0 = path("p.h5.parts/entry-0.h5"), part1 = path("p.h5.parts/entry-1.h5");
+  {
+    const mcref::DatasetReader r(part0);
+    EXPECT_TRUE(r.header().sums);
+    const mcref::DatasetEntry e = r.entry(0), f = mcref::DatasetReader(path("full.h5")).entry(0);
+    ASSERT_EQ(e.tables.size(), 3u);
+    ASSERT_EQ(e.tables.size(), f.tables.size());
+    for (std::size_t i = 0; i < e.tables.size(); ++i) {
+      EXPECT_EQ(e.tables[i].name, f.tables[i].name);
+      EXPECT_EQ(e.tables[i].batches, f.tables[i].batches);
+      EXPECT_EQ(e.tables[i].sum, f.tables[i].sum) << e.tables[i].name;
+      EXPECT_EQ(e.tables[i].sum_sq, f.tables[i].sum_sq) << e.tables[i].name;
+    }
+    hid_t file = H5Fopen(part0.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    {
+      mcref::h5::Handle root = mcref::h5::open_group(file, "/");
+      EXPECT_EQ(mcref::h5::read_string_attr(root, "storage"), "sums");
+      for (const char* table : {"brdf", "brdf_btdf", "brdf_albedo"}) {
+        mcref::h5::Handle g = mcref::h5::open_group(file, std::string("entries/0/") + table);
+        EXPECT_EQ(mcref::h5::read_string_attr(g, "storage"), "sums") << table;
+        EXPECT_TRUE(mcref::h5::exists(g, "sum") && mcref::h5::exists(g, "sum_sq")) << table;
+        EXPECT_FALSE(mcref::h5::exists(g, "value") || mcref::h5::exists(g, "stderr")) << table;
+      }
+    }
+    H5Fclose(file);
+  }
+  // Part 1 rewritten in full storage, as earlier builds wrote parts.
+  rewrite(part1, [](mcref::DatasetHeader& h) { h.sums = false; });
+  EXPECT_FALSE(mcref::DatasetReader(part1).header().sums);
+  const mcref::DatasetRunSummary resumed = run("p.h5");
+  EXPECT_TRUE(resumed.complete);
+  EXPECT_EQ(resumed.reused, 2);
+  EXPECT_TRUE(slurp(path("p.h5")) == reference) << "resume from sums and full parts changed the bytes";
+  // Parts given to merge as shards (with the last entry's shard file) give a full file: the reference.
+  run("q.h5", 0, 1, 1, 5);
+  run("q5.h5", 5, 6, 1);
+  std::vector<std::string> shards;  // a part first: the result takes the first file's header
+  for (int i = 0; i < 5; ++i) shards.push_back(path("q.h5.parts/entry-" + std::to_string(i) + ".h5"));
+  shards.push_back(path("q5.h5"));
+  EXPECT_EQ(mcref::merge_datasets(shards, path("merged.h5"), true), 6);
+  EXPECT_FALSE(mcref::DatasetReader(path("merged.h5")).header().sums);
+  EXPECT_TRUE(slurp(path("merged.h5")) == reference) << "parts merged by hand differ from the run";
 }
 
 // Parts and shards combine when the build that simulated them had this
