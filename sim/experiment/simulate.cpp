@@ -3,7 +3,6 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
-#include <stdexcept>
 
 #include "sim/experiment/simulate_kinds.h"
 #include "sim/experiment/table_plan.h"
@@ -22,26 +21,10 @@ std::vector<Table> flatten(std::vector<std::vector<Table>>&& per_measure) {
   return out;
 }
 
-namespace {
-
-// Throws unless every name in `keep` is a table the experiment writes.
-void check_table_names(const Experiment& ex, const std::vector<std::string>& keep) {
-  if (keep.empty()) return;
-  const std::vector<Table> outline = table_outline(ex);
-  for (const std::string& name : keep)
-    if (std::none_of(outline.begin(), outline.end(), [&](const Table& t) { return t.name == name; })) {
-      std::string names;
-      for (const Table& t : outline) names += (names.empty() ? "" : ", ") + t.name;
-      throw std::invalid_argument("\"" + name + "\" is not a table of the experiment (it writes: " + names + ")");
-    }
-}
-
-}  // namespace
-
 std::vector<Table> simulate(const Experiment& ex, const SimulateOptions& options, SimulateSummary* summary) {
   const int threads = effective_threads(ex, options.threads);
   const Communicator& ranks = *options.ranks;
-  check_table_names(ex, options.tables);
+  check_table_names(ex, options.tables, "SimulateOptions", "tables");
   // Before anything is allocated; rank 0 (which holds the tables) decides for every rank.
   check_on_root(ranks, [&] { check_memory(ex, threads); });
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));

@@ -105,6 +105,18 @@ std::vector<Table> table_outline(const Experiment& ex) {
   return empty_tables(small);
 }
 
+void check_table_names(const Experiment& ex, const std::vector<std::string>& names, const std::string& file,
+                       const std::string& key) {
+  if (names.empty()) return;
+  const std::vector<Table> outline = table_outline(ex);
+  for (const std::string& name : names)
+    if (std::none_of(outline.begin(), outline.end(), [&](const Table& t) { return t.name == name; })) {
+      std::string all;
+      for (const Table& t : outline) all += (all.empty() ? "" : ", ") + t.name;
+      throw ConfigError(file, key, "\"" + name + "\" is not a table of the experiment (it writes: " + all + ")");
+    }
+}
+
 double measure_cells(const Measure& m, const Experiment& ex) { return measure_size(m, ex).cells; }
 
 int effective_threads(const Experiment& ex, int requested) {

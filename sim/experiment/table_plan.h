@@ -20,6 +20,12 @@ std::vector<Table> empty_tables(const Experiment& ex);
 // size, for checks of what a run will write.
 std::vector<Table> table_outline(const Experiment& ex);
 
+// ConfigError(file, key, ...) naming the first of `names` that is not a table
+// of the experiment, and the tables it writes (where a caller asks for tables
+// by name: a dataset's `tables`, simulate's --table).
+void check_table_names(const Experiment& ex, const std::vector<std::string>& names, const std::string& file,
+                       const std::string& key);
+
 // Cells of a measure's tables, from the measure alone (nothing allocated):
 // an upper bound of the cells of its empty_tables (small derived tables are
 // counted even where they are not written).

@@ -218,3 +218,59 @@ def test_to_xarray():
 def test_a_path_given_as_text_is_pointed_to_simulate_file():
     with pytest.raises(mcref.ConfigError, match="simulate_file"):
         mcref.simulate("validate/experiments/tau_plus.toml")
+
+
+SLAB = """
+[geometry]
+kind = "slab"
+
+[[geometry.layer]]
+phase = "sggx_surface"
+alpha = 0.5
+thickness = 1.0
+density = 2.0
+albedo = 0.8
+
+[run]
+seed = 3
+batches = 2
+
+[[measure]]
+quantity = "brdf"
+theta_i_deg = [30]
+theta_o_bins = 4
+phi_bins = 4
+samples = 2000
+"""
+
+
+def test_only_the_named_tables(cli, tmp_path):
+    # tables= and --table give the named tables only, the bits of the full run's.
+    cfg = tmp_path / "slab.toml"
+    cfg.write_text(SLAB)
+    names = ["brdf_btdf_albedo", "brdf"]
+    out = tmp_path / "two.h5"
+    code, _, err = cli("simulate", str(cfg), "-o", str(out), "--table", names[0], "--table", names[1], "--quiet")
+    assert code == 0, err
+    from_cli = mcref.read_tables(str(out))
+    from_python = mcref.simulate(SLAB, tables=names)
+    full = mcref.simulate(SLAB)
+    assert sorted(from_cli.names) == sorted(names) and sorted(from_python.names) == sorted(names)
+    assert len(full.names) > len(names)
+    same_tables(from_cli, from_python)
+    for name in names:
+        assert np.array_equal(full[name].sum, from_python[name].sum) and full[name].batches == from_python[name].batches
+
+
+def test_a_table_the_experiment_does_not_write_is_refused(cli, tmp_path):
+    cfg = tmp_path / "slab.toml"
+    cfg.write_text(SLAB)
+    out = tmp_path / "x.h5"
+    code, _, err = cli("simulate", str(cfg), "-o", str(out), "--table", "brdf", "--table", "brdf_order5", "--quiet")
+    lines = err.strip().splitlines()
+    assert code == 2 and len(lines) == 1
+    assert lines[0].startswith("mcref: error: command line: key '--table': \"brdf_order5\" is not a table"), lines[0]
+    assert "brdf_btdf_order4plus" in lines[0]  # the tables it writes
+    assert not out.exists()
+    with pytest.raises(mcref.ConfigError, match=r"^<python>: key 'tables': \"brdf_order5\" is not a table"):
+        mcref.simulate(SLAB, tables=["brdf_order5"])

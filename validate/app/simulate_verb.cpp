@@ -3,6 +3,7 @@
 #include "sim/experiment/config_error.h"
 #include "sim/experiment/experiment.h"
 #include "sim/experiment/simulate.h"
+#include "sim/experiment/table_plan.h"
 #include "sim/files/output_path.h"
 #include "sim/hdf5/table_file.h"
 #include "validate/app/verbs.h"
@@ -12,14 +13,15 @@ namespace mcref::cli {
 namespace {
 const char* kHelp =
     "usage: mcref simulate EXPERIMENT.toml -o TABLES.h5 [--seed N] [--threads N]\n"
-    "                      [--set key=value]... [--quiet]\n"
+    "                      [--set key=value]... [--table NAME]... [--quiet]\n"
     "\n"
     "Simulates every [[measure]] of the experiment on run.batches independent\n"
     "realizations of the geometry and writes one table per measure to TABLES.h5\n"
     "(written to a temporary file and renamed: never half-written).\n"
     "  --seed N         overrides run.seed\n"
     "  --threads N      worker threads (tables are identical for any N)\n"
-    "  --set key=value  overrides a key, e.g. --set geometry.tau0=0.3 --set measure.0.samples=1e5\n"
+    "  --set key=value  overrides a key, e.g. --set geometry.tau0=0.3 --set measure.0.samples=1e5\n"    "  --table NAME     writes only this table (repeatable; default: every table); the\n"
+    "                   slab's brdf tables not named are not computed, the others are the same\n"
     "  --quiet          no progress line\n"
     "Under mpirun -np N, the batches are spread over the N ranks and rank 0 writes\n"
     "TABLES.h5: the same tables as one process.\n";
@@ -36,12 +38,14 @@ int simulate(const std::vector<std::string>& raw, const std::string& command_lin
   std::vector<std::string> sets = a.sets;
   if (a.seed >= 0) sets.push_back("run.seed=" + std::to_string(a.seed));
   const Experiment ex = load_experiment(a.positional[0], sets);
+  check_table_names(ex, a.tables, "command line", "--table");
   // Fail before simulating if the output cannot be written.
   SimulateOptions opt;
   opt.ranks = &Communicator::world();  // under mpirun: the batches spread over the ranks
   check_on_root(*opt.ranks, [&] { check_output_file(a.output, with_inputs({a.positional[0]}, ex.inputs)); });
   opt.threads = a.threads;
   opt.quiet = a.quiet;
+  opt.tables = a.tables;
   SimulateSummary summary;
   TableFile out;
   out.tables = mcref::simulate(ex, opt, &summary);

@@ -7,6 +7,7 @@
 #include "sim/experiment/config_error.h"
 #include "sim/experiment/experiment.h"
 #include "sim/experiment/simulate.h"
+#include "sim/experiment/table_plan.h"
 #include "sim/hdf5/table_file.h"
 #include "validate/model_evaluation.h"
 #include "validate/python/bindings.h"
@@ -70,10 +71,12 @@ std::pair<std::string, std::string> config_text(const py::object& config) {
   throw ConfigError("<python>", "config", "must be a dict or TOML text (use open(path).read() or simulate_file(path))");
 }
 
-TableFile run(const Experiment& ex, int threads, bool quiet, const std::string& call) {
+TableFile run(const Experiment& ex, int threads, bool quiet, const std::vector<std::string>& tables, const std::string& call) {
+  check_table_names(ex, tables, "<python>", "tables");
   SimulateOptions opt;
   opt.threads = threads;
   opt.quiet = quiet;
+  opt.tables = tables;
   TableFile out;
   {
     py::gil_scoped_release release;
@@ -95,27 +98,32 @@ std::vector<std::string> overrides(std::vector<std::string> sets, py::object see
 }  // namespace
 
 void bind_simulate(py::module_& m) {
-  m.def("simulate", [](py::object config, py::object seed, int threads, std::vector<std::string> sets, bool quiet) {
+  m.def("simulate", [](py::object config, py::object seed, int threads, std::vector<std::string> sets, bool quiet,
+                       std::vector<std::string> tables) {
     const auto [text, file] = config_text(config);
     const Experiment ex = parse_experiment(text, file, overrides(sets, seed));
     if (threads < 0 || threads > 1024) throw ConfigError("<python>", "threads", "= " + std::to_string(threads) + " must be an integer in [0, 1024]");
-    return run(ex, threads, quiet, "python: mcref.simulate");
+    return run(ex, threads, quiet, tables, "python: mcref.simulate");
   }, py::arg("config"), py::arg("seed") = py::none(), py::arg("threads") = 0,
         py::arg("sets") = std::vector<std::string>{}, py::arg("quiet") = true,
+        py::arg("tables") = std::vector<std::string>{},
         "Simulates an experiment given as a dict or as TOML text, with the keys of the\n"
         "experiment files (README: Experiment files). seed overrides run.seed (as --seed);\n"
         "threads: worker threads, 0 = run.threads (tables are identical for any count);\n"
-        "sets: 'key=value' overrides (as --set). Returns a TableFile whose tables are\n"
+        "sets: 'key=value' overrides (as --set); tables: only these tables, by name (as\n"
+        "--table; default all). Returns a TableFile whose tables are\n"
         "bit-identical to what `mcref simulate` writes for the same config and seed.\n"
         "Bad input raises mcref.ConfigError with the CLI's one-line message (the file is\n"
         "named '<dict>' or '<string>').");
 
-  m.def("simulate_file", [](const std::string& path, py::object seed, int threads, std::vector<std::string> sets, bool quiet) {
+  m.def("simulate_file", [](const std::string& path, py::object seed, int threads, std::vector<std::string> sets, bool quiet,
+                            std::vector<std::string> tables) {
     const Experiment ex = load_experiment(path, overrides(sets, seed));
     if (threads < 0 || threads > 1024) throw ConfigError("<python>", "threads", "= " + std::to_string(threads) + " must be an integer in [0, 1024]");
-    return run(ex, threads, quiet, "python: mcref.simulate_file " + path);
+    return run(ex, threads, quiet, tables, "python: mcref.simulate_file " + path);
   }, py::arg("path"), py::arg("seed") = py::none(), py::arg("threads") = 0,
         py::arg("sets") = std::vector<std::string>{}, py::arg("quiet") = true,
+        py::arg("tables") = std::vector<std::string>{},
         "Same as simulate() for an experiment file: errors name the file exactly as `mcref simulate` does.");
 
   m.def("parse_config", [](py::object config) {

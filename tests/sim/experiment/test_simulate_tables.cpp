@@ -4,15 +4,15 @@
 // tables and returns the named ones. Either way the returned tables are the
 // bits of the full run (sum, sum_sq, batches, attributes), in the
 // experiment's order, for both slab walks and on 1 and 2 threads. A name the
-// experiment does not write is refused before any path, naming it and the
-// tables there are.
+// experiment does not write is refused (ConfigError) before any path, naming
+// it and the tables there are.
 #include <gtest/gtest.h>
 
 #include <cstring>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "sim/experiment/config_error.h"
 #include "sim/experiment/experiment.h"
 #include "sim/experiment/simulate.h"
 #include "sim/experiment/simulate_kinds.h"
@@ -101,7 +101,7 @@ TEST(SimulateTables, RefusesATableTheExperimentDoesNotWrite) {
   try {
     run(ex, 1, {"brdf", "brdf_order5"});
     FAIL() << "no error";
-  } catch (const std::invalid_argument& e) {
+  } catch (const ConfigError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("\"brdf_order5\" is not a table"), std::string::npos) << what;
     EXPECT_NE(what.find("brdf_btdf_order4plus"), std::string::npos) << what;  // the tables there are
