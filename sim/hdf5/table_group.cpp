@@ -144,10 +144,11 @@ Table read_table_group(hid_t parent, const std::string& name) {
   t.sum = h5::read_doubles(group, "sum");
   t.sum_sq = h5::read_doubles(group, "sum_sq");
   if (t.sum.size() != t.cells() || t.sum_sq.size() != t.cells()) throw std::runtime_error("table shape mismatch");
-  // value and stderr are derived from the sums; a full table whose stored ones
-  // are missing or differ (bit for bit, NaN as NaN) is damaged or not mcref's.
+  // value and stderr are derived from the sums (and not stored in "sums"); a
+  // full table whose stored ones are missing or differ (bit for bit, NaN as
+  // NaN) is damaged or not mcref's.
   for (const char* derived : {"value", "stderr"}) {
-    if (storage == "sums") break;  // not stored
+    if (storage != "full") continue;
     if (!h5::exists(group, derived)) throw std::runtime_error("table " + name + " has no " + derived + " dataset");
     const std::vector<double> stored = h5::read_doubles(group, derived);
     if (stored.size() != t.cells()) throw std::runtime_error("table " + name + ": " + derived + " has the wrong shape");
