@@ -179,7 +179,7 @@ class GridFlight final : public FreeFlight {
     const int narrow = (across <= M.narrow_reach[1] * major) + (across <= M.narrow_reach[0] * major);  // 0: square
     const int shape = narrow + 2 * ((ay > ax) & (narrow != 0));
     const int rx = M.box_reach[shape][0], ry = M.box_reach[shape][1];
-    const double* ahead = M.ahead_hi.data() + (4 * shape + (p.d.x < 0) + 2 * (p.d.y < 0)) * M.hi.size();
+    const unsigned char* ahead = M.ahead_hi.data() + (4 * shape + (p.d.x < 0) + 2 * (p.d.y < 0)) * M.hi.size();
     const double inv_dx = 1 / dx, inv_dy = 1 / dy, inv_rate = 1 / rate;
     const bool back_x = std::signbit(dx), back_y = std::signbit(dy), up = rate < 0;
     const double far_x = back_x ? -rx : rx + 1, far_y = back_y ? -ry : ry + 1;
@@ -209,7 +209,7 @@ class GridFlight final : public FreeFlight {
     Leg leg = Leg::kCollision;
     for (long exits = 0;;) {
       const std::size_t box = (static_cast<std::size_t>(iz) * m + iy) * m + ix;
-      const double hi = ahead[box], mu = hi * f;
+      const double hi = M.ahead_levels[ahead[box]], mu = hi * f;
       const double face = M.faces[iz + !up];
       const double ex = (far_x - fx) * inv_dx, ey = (far_y - fy) * inv_dy, ez = rate != 0 ? (face - p.depth) * inv_rate : INFINITY;
       const double e = std::min(std::min(ex, ey), ez);  // (std::fmin is a libm call)

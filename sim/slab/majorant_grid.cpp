@@ -9,6 +9,21 @@ namespace mcref::volume {
 
 namespace {
 
+// ahead_levels: 0, then top r^(q - 255) for q = 1..255, the ratio r spanning
+// top / least (the least positive value to encode) when that keeps it in
+// [1.001, 1.05]: rounding up to a level loosens a majorant by less than r.
+std::array<double, 256> geometric_levels(double top, double least) {
+  std::array<double, 256> levels{};
+  const double r = std::clamp(least > 0 ? std::pow(top / least, 1.0 / 254) : 1.05, 1.001, 1.05);
+  for (int q = 1; q < 256; ++q) levels[q] = q == 255 ? top : top * std::pow(r, q - 255);
+  return levels;
+}
+
+// The least level >= v (a majorant stays one), as its index; v <= levels[255].
+unsigned char level_above(double v, const std::array<double, 256>& levels) {
+  return static_cast<unsigned char>(std::lower_bound(levels.begin(), levels.end(), v) - levels.begin());
+}
+
 // Bounds of the field over the corners of a voxel cell.
 struct Bounds {
   double lo = INFINITY, hi = 0;  // density
@@ -234,16 +249,20 @@ std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_b
       L.narrow_reach[1] = narrow[1];
       const std::size_t cells = L.hi.size();
       L.ahead_hi.resize(4 * L.box_reach.size() * cells);
-      std::vector<double> along_x(row);  // max over the rx + 1 cells from each cell along x, in one depth row
+      double least = INFINITY;
+      for (const double h : L.hi) least = h > 0 ? std::min(least, h) : least;
+      L.ahead_levels = geometric_levels(*std::max_element(L.hi.begin(), L.hi.end()), least);
+      std::vector<double> along_x(row), box(row);  // max over the rx + 1 cells from each cell along x, then the box's
       WindowMax window;
       for (std::size_t shape = 0; shape < L.box_reach.size(); ++shape)
         for (int q = 0; q < 4; ++q) {
           const int rx = L.box_reach[shape][0], ry = L.box_reach[shape][1], sx = q & 1 ? -1 : 1, sy = q & 2 ? -1 : 1;
-          double* ahead = L.ahead_hi.data() + (shape * 4 + q) * cells;
+          unsigned char* ahead = L.ahead_hi.data() + (shape * 4 + q) * cells;
           for (std::size_t z = 0; z < L.row_hi.size(); ++z) {
             const double* hi = L.hi.data() + z * row;
             for (int cj = 0; cj < m; ++cj) window(hi + cj * m, 1, m, rx + 1, sx, along_x.data() + cj * m);
-            for (int ci = 0; ci < m; ++ci) window(along_x.data() + ci, m, m, ry + 1, sy, ahead + z * row + ci);
+            for (int ci = 0; ci < m; ++ci) window(along_x.data() + ci, m, m, ry + 1, sy, box.data() + ci);
+            for (std::size_t c = 0; c < row; ++c) ahead[z * row + c] = level_above(box[c], L.ahead_levels);
           }
         }
     }

@@ -36,7 +36,11 @@
 //    box (free_flight.cpp). Shapes: square (r = reach), and r along the direction's
 //    major axis by about r / 4 or r / 2 across it (narrow_reach), for directions
 //    whose path over r + 1 cells stays within that band. Computed separably: the
-//    max along x, then along y.
+//    max along x, then along y; stored rounded up to the least of 256 levels
+//    above it (0, then geometric with a ratio of at most 1.05 up to the layer's
+//    largest hi), as its index: a byte per box, so that the 20 tables of a
+//    32 x 32-cell layer (20 KiB) stay in the L1 cache, where doubles (160 KiB)
+//    did not (tests/bench/README.md).
 // hi and lo carry a relative margin of kMargin for the single-precision
 // interpolation of the density voxels.
 #include <array>
@@ -64,7 +68,8 @@ struct LayerMajorants {
   int reach = 0;                  // r: lateral cells ahead of the photon's (lateral > 1)
   std::array<std::array<int, 2>, 5> box_reach{};  // per box shape: cells ahead along x, along y
   int narrow_reach[2] = {0, 0};   // the narrow boxes' reach across the major axis (shapes 2, 4 and 1, 3)
-  std::vector<double> ahead_hi;   // index (shape * 4 + q) * hi.size() + cell: max of hi over the box ahead
+  std::vector<unsigned char> ahead_hi;     // index (shape * 4 + q) * hi.size() + cell: level of the box ahead
+  std::array<double, 256> ahead_levels{};  // 0, then geometric up to the layer's max hi
   bool one_s = false;             // SGGX layer with one S everywhere (s)
   bool s_varies = false;          // SGGX layer whose S varies: look S up at collisions
   sggx::Sggx s;
