@@ -1,5 +1,7 @@
 #include "sim/slab/majorant_grid.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -20,8 +22,12 @@ std::array<double, 256> geometric_levels(double top, double least) {
 }
 
 // The least level >= v (a majorant stays one), as its index; v <= levels[255].
+// A binary search without branches on the data: below = the last level < v.
 unsigned char level_above(double v, const std::array<double, 256>& levels) {
-  return static_cast<unsigned char>(std::lower_bound(levels.begin(), levels.end(), v) - levels.begin());
+  if (!(v > 0)) return 0;
+  int below = 0;
+  for (int step = 128; step > 0; step /= 2) below = levels[below + step] < v ? below + step : below;
+  return static_cast<unsigned char>(below + 1);
 }
 
 // Bounds of the field over the corners of a voxel cell.
@@ -103,26 +109,40 @@ bool laterally_uniform(const openvdb::FloatGrid& grid) {
   return true;
 }
 
-// Sliding maxima on a periodic row of m values (in[k stride], k < m): out[c stride]
-// = max over in[(c + s b) mod m], b in [0, w) (s = +1 or -1, w <= m), in O(m)
-// whatever w (van Herk 1992, Gil & Werman 1993): the row unrolled so each window
-// is ext[c, c + w), maxima from each block of w's start (pre) and to its end
-// (suf); a window spans at most two blocks. The maximum of a set of doubles is
-// exact in any order, so this equals the direct maximum bit for bit.
+// Sliding maxima on a periodic row of m elements (element k at in + k stride,
+// `lanes` contiguous doubles, each lane on its own): out[c stride] = max over
+// in[((c + s b) mod m) stride], b in [0, w) (s = +1 or -1, w <= m), in O(m)
+// whatever w (van Herk 1992, Gil & Werman 1993): the row unrolled so each
+// window is [c, c + w) of it, maxima from each block of w's start (pre) and to
+// its end (suf); a window spans at most two blocks. Lanes let a pass along y
+// read whole rows (strips of columns), not one column at a stride of a row.
+// The maximum of a set of doubles is exact in any order, so this equals the
+// direct maximum bit for bit.
 struct WindowMax {
-  std::vector<double> ext, pre, suf;
-  void operator()(const double* in, std::ptrdiff_t stride, int m, int w, int s, double* out) {
+  std::vector<double> pre, suf;
+  void operator()(const double* in, std::ptrdiff_t stride, int m, int w, int s, double* out, int lanes = 1) {
     const int len = m + w - 1;
-    ext.resize(len);
-    pre.resize(len);
-    suf.resize(len);
-    for (int t = 0; t < len; ++t) {
-      const int k = s > 0 ? t % m : ((t - (w - 1)) % m + m) % m;  // s = -1: window c ends at c
-      ext[t] = in[k * stride];
+    pre.resize(static_cast<std::size_t>(len) * lanes);
+    suf.resize(static_cast<std::size_t>(len) * lanes);
+    const int k0 = s > 0 ? 0 : m - (w - 1);  // the element at t = 0 (s = -1: window c ends at c)
+    const auto at = [&](int t) {
+      const int k = k0 + t;  // < 2m
+      return in + (k >= m ? k - m : k) * stride;
+    };
+    for (int b = 0; b < len; b += w) {  // the blocks of w
+      const int e = std::min(b + w, len) - 1;
+      double* p = pre.data() + static_cast<std::size_t>(b) * lanes;
+      std::copy(at(b), at(b) + lanes, p);
+      for (int t = b + 1; t <= e; ++t, p += lanes)
+        for (int l = 0; l < lanes; ++l) p[lanes + l] = std::max(p[l], at(t)[l]);
+      double* q = suf.data() + static_cast<std::size_t>(e) * lanes;
+      std::copy(at(e), at(e) + lanes, q);
+      for (int t = e - 1; t >= b; --t, q -= lanes)
+        for (int l = 0; l < lanes; ++l) q[l - lanes] = std::max(q[l], at(t)[l]);
     }
-    for (int t = 0; t < len; ++t) pre[t] = t % w == 0 ? ext[t] : std::max(pre[t - 1], ext[t]);
-    for (int t = len - 1; t >= 0; --t) suf[t] = (t + 1) % w == 0 || t == len - 1 ? ext[t] : std::max(suf[t + 1], ext[t]);
-    for (int c = 0; c < m; ++c) out[c * stride] = std::max(suf[c], pre[c + w - 1]);
+    for (int c = 0; c < m; ++c)
+      for (int l = 0; l < lanes; ++l)
+        out[c * stride + l] = std::max(suf[static_cast<std::size_t>(c) * lanes + l], pre[static_cast<std::size_t>(c + w - 1) * lanes + l]);
   }
 };
 
@@ -252,19 +272,21 @@ std::vector<LayerMajorants> build_majorants(const DensityGrids& g, int lateral_b
       double least = INFINITY;
       for (const double h : L.hi) least = h > 0 ? std::min(least, h) : least;
       L.ahead_levels = geometric_levels(*std::max_element(L.hi.begin(), L.hi.end()), least);
-      std::vector<double> along_x(row), box(row);  // max over the rx + 1 cells from each cell along x, then the box's
-      WindowMax window;
-      for (std::size_t shape = 0; shape < L.box_reach.size(); ++shape)
-        for (int q = 0; q < 4; ++q) {
-          const int rx = L.box_reach[shape][0], ry = L.box_reach[shape][1], sx = q & 1 ? -1 : 1, sy = q & 2 ? -1 : 1;
-          unsigned char* ahead = L.ahead_hi.data() + (shape * 4 + q) * cells;
-          for (std::size_t z = 0; z < L.row_hi.size(); ++z) {
-            const double* hi = L.hi.data() + z * row;
-            for (int cj = 0; cj < m; ++cj) window(hi + cj * m, 1, m, rx + 1, sx, along_x.data() + cj * m);
-            for (int ci = 0; ci < m; ++ci) window(along_x.data() + ci, m, m, ry + 1, sy, box.data() + ci);
-            for (std::size_t c = 0; c < row; ++c) ahead[z * row + c] = level_above(box[c], L.ahead_levels);
-          }
+      // One table per shape and quadrant, each on its own (the same bits on any thread count).
+      tbb::parallel_for(0, 4 * static_cast<int>(L.box_reach.size()), [&](int table) {
+        const int shape = table / 4, q = table % 4;
+        const int rx = L.box_reach[shape][0], ry = L.box_reach[shape][1], sx = q & 1 ? -1 : 1, sy = q & 2 ? -1 : 1;
+        constexpr int kStrip = 16;  // columns per pass along y
+        std::vector<double> along_x(row), box(row);  // max over the rx + 1 cells from each cell along x, then the box's
+        WindowMax window;
+        unsigned char* ahead = L.ahead_hi.data() + table * cells;
+        for (std::size_t z = 0; z < L.row_hi.size(); ++z) {
+          const double* hi = L.hi.data() + z * row;
+          for (int cj = 0; cj < m; ++cj) window(hi + cj * m, 1, m, rx + 1, sx, along_x.data() + cj * m);
+          for (int ci = 0; ci < m; ci += kStrip) window(along_x.data() + ci, m, m, ry + 1, sy, box.data() + ci, std::min(kStrip, m - ci));
+          for (std::size_t c = 0; c < row; ++c) ahead[z * row + c] = level_above(box[c], L.ahead_levels);
         }
+      });
     }
     out.push_back(std::move(L));
     top = bottom;
