@@ -5,7 +5,12 @@ voxel intervals in depth here, 32 there, the field being constant in depth; one
 SGGX surface-like layer, alpha 0.5, T rho 5 on average, albedo 0.9), read through
 geometry.density_vdb, and its laterally uniform twin.
 
-  tests/bench/lateral_slab.py build/mcref OUT_DIR [--amplitude 0.5]
+  tests/bench/lateral_slab.py build/mcref OUT_DIR [--amplitude 0.5] [--lateral-voxels 16]
+      [--depth-voxels 16] [--period 16] [--depth-period 0]
+
+(--period: the field's lateral period in voxels; --depth-period > 0 multiplies the cosines by
+cos(2 pi k / depth-period) at depth voxel k, a layer varying in depth as well; the defaults give
+bench_slab's medium)
 
 writes OUT_DIR/uniform.toml, OUT_DIR/uniform.vdb (mcref export-vdb of it), OUT_DIR/lateral.vdb
 (its densities times the field, written by pyopenvdb) and OUT_DIR/lateral.toml, e.g. for
@@ -18,6 +23,7 @@ import math
 import os
 import subprocess
 
+import numpy as np
 import pyopenvdb as vdb
 
 EXPERIMENT = """# The bench_slab lateral medium (tests/bench/lateral_slab.py).
@@ -25,8 +31,8 @@ EXPERIMENT = """# The bench_slab lateral medium (tests/bench/lateral_slab.py).
 kind = "slab"
 backend = "openvdb"
 tile = 1.0
-lateral_voxels = 16
-depth_voxels = 16
+lateral_voxels = {lateral_voxels}
+depth_voxels = {depth_voxels}
 {density_vdb}
 [[geometry.layer]]
 phase = "sggx_surface"
@@ -53,29 +59,36 @@ def main():
     ap.add_argument("mcref")
     ap.add_argument("out")
     ap.add_argument("--amplitude", type=float, default=0.5)
+    ap.add_argument("--lateral-voxels", type=int, default=16)
+    ap.add_argument("--depth-voxels", type=int, default=16)
+    ap.add_argument("--period", type=float, default=16)
+    ap.add_argument("--depth-period", type=float, default=0)
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
+    sizes = dict(lateral_voxels=args.lateral_voxels, depth_voxels=args.depth_voxels)
     uniform = os.path.join(args.out, "uniform.toml")
     with open(uniform, "w") as f:
-        f.write(EXPERIMENT.format(density_vdb="", density="density = 5.0"))
+        f.write(EXPERIMENT.format(density_vdb="", density="density = 5.0", **sizes))
     exported = os.path.join(args.out, "uniform.vdb")
     subprocess.run([args.mcref, "export-vdb", uniform, "-o", exported, "--quiet"], check=True)
     grids, metadata = vdb.readAll(exported)
     for g in grids:
         if not g.name.endswith("_density"):
             continue
-        acc = g.getAccessor()
         lo, hi = g.evalActiveVoxelBoundingBox()
-        for i in range(lo[0], hi[0] + 1):
-            for j in range(lo[1], hi[1] + 1):
-                field = 1 + args.amplitude * math.cos(2 * math.pi * i / 16) * math.cos(2 * math.pi * j / 16)
-                for k in range(lo[2], hi[2] + 1):
-                    value, on = acc.probeValue((i, j, k))
-                    if on:
-                        acc.setValueOn((i, j, k), value * field)
+        shape = tuple(hi[a] - lo[a] + 1 for a in range(3))
+        if g.activeVoxelCount() != math.prod(shape):
+            raise SystemExit(f"{exported}: grid {g.name} is not dense over its bounding box")
+        value = np.zeros(shape, dtype=np.float32)
+        g.copyToArray(value, ijk=lo)
+        i, j, k = (np.arange(lo[a], hi[a] + 1).reshape([-1 if b == a else 1 for b in range(3)]) for a in range(3))
+        field = np.cos(2 * np.pi * i / args.period) * np.cos(2 * np.pi * j / args.period)
+        if args.depth_period > 0:
+            field = field * np.cos(2 * np.pi * k / args.depth_period)
+        g.copyFromArray((value * (1 + args.amplitude * field)).astype(np.float32), ijk=lo)
     vdb.write(os.path.join(args.out, "lateral.vdb"), grids=grids, metadata=metadata)
     with open(os.path.join(args.out, "lateral.toml"), "w") as f:
-        f.write(EXPERIMENT.format(density_vdb='density_vdb = "lateral.vdb"', density=""))
+        f.write(EXPERIMENT.format(density_vdb='density_vdb = "lateral.vdb"', density="", **sizes))
 
 
 if __name__ == "__main__":
