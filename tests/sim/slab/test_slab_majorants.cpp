@@ -254,7 +254,8 @@ TEST(SlabMajorants, BoundTheExtinctionInEveryCell) {
 // shape, quadrant and cell, the max of hi over exactly the box the flight uses
 // (the cell and the rx cells ahead of it along x and ry along y, in the
 // quadrant's directions, wrapped around the tile; brute force, cell by cell),
-// rounded up to the least of the layer's levels above it, at most 5 % above it.
+// rounded up to the least of the layer's levels above it, at most 5 % above it
+// (to the rounding of the levels' powers).
 // On the random layer and the cosine layer, cells of half a column and of one;
 // the cosine layer also with the widest boxes (reach m - 1: a window of the
 // whole row, computed by sliding maxima in majorant_grid.cpp).
@@ -298,7 +299,7 @@ TEST(SlabMajorants, BoxMajorantsAreTheMaxOverTheirBoxes) {
                 const int level = M->ahead_hi[(static_cast<std::size_t>(shape) * 4 + q) * cells + cell];
                 const double ahead = M->ahead_levels[level];
                 ASSERT_TRUE(ahead >= best && (level == 0 || M->ahead_levels[level - 1] < best) &&
-                            (best < M->ahead_levels[1] || ahead <= 1.05 * best)) << "shape " << shape << " (" << rx << ", " << ry << ") quadrant " << q
+                            (best < M->ahead_levels[1] || ahead <= 1.05 * (1 + 1e-12) * best)) << "shape " << shape << " (" << rx << ", " << ry << ") quadrant " << q
                                        << " cell " << ci << ", " << cj << ", " << cz;
                 uneven += best > M->hi[cell];
               }
