@@ -166,8 +166,6 @@ void read_slab_geometry(TomlReader& g, Experiment& e) {
   s.estimator = estimator == "analog"       ? SlabEstimator::kAnalog
                 : estimator == "next_event" ? SlabEstimator::kNextEvent
                                             : SlabEstimator::kNextEventMis;
-  if (s.estimator != SlabEstimator::kAnalog && s.wave_walk)
-    g.fail("estimator", "\"" + estimator + "\" needs walk = \"scalar\" (the wave walk has no next-event estimator)");
   for (std::size_t i = 0; i < s.layers.size(); ++i)
     if (!s.grid.openvdb && s.layers[i].profile.kind != DensityProfile::Kind::kConstant)
       throw ConfigError(e.file, "geometry.layer." + std::to_string(i) + ".profile",

@@ -3,37 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "models/core/warp.h"
-#include "sim/slab/escape.h"
+#include "sim/slab/next_event.h"
 #include "sim/slab/substrate.h"
 
 namespace mcref::volume {
-
-namespace {
-
-// The next-event estimator with MIS at a volume event (walk.h), the photon at
-// the collision with p.d the sampled direction: that direction's escape
-// (weight after the event) and a uniform direction's (weight before it),
-// balance heuristic.
-void tally_next_event_mis(const SlabMedium& medium, const Photon& p, Vec3 wi, const Rgb& before, const Rgb& after,
-                          int order, int first_class, Rng& rng, BrdfAccumulator& out) {
-  const PhaseFunction& phase = *medium.layers()[p.layer].phase;
-  const bool upper_only = medium.has_substrate();
-  const double pdf_u = upper_only ? 1 / (2 * kPi) : 1 / (4 * kPi);
-  if (const double e = escape_estimate(medium, p, p.d, rng); e > 0) {
-    const double f = phase.eval(wi, p.d);
-    out.add(p.d, order, first_class, after * (e * f / (f + pdf_u)), false);
-  }
-  const double u1 = rng.uniform(), u2 = rng.uniform();
-  Vec3 u = sample_uniform_sphere(u1, u2);
-  if (upper_only) u.z = std::fabs(u.z);
-  const double f = phase.eval(wi, u);
-  if (!(f > 0)) return;
-  if (const double e = escape_estimate(medium, p, u, rng); e > 0)
-    out.add(u, order, first_class, before * phase.albedo(wi, u) * (e * f / (f + pdf_u)), false);
-}
-
-}  // namespace
 
 int walk(const SlabMedium& medium, FreeFlight& flight, const WalkSettings& s, Vec3 wi, Rng& rng,
          BrdfAccumulator& out) {
@@ -83,8 +56,7 @@ int walk(const SlabMedium& medium, FreeFlight& flight, const WalkSettings& s, Ve
     }
     // Before the roulette: its expectation is the same. (With MIS, volume events are tallied above.)
     if (s.estimator == SlabEstimator::kNextEvent || (next_event && f != Flight::kCollision))
-      if (const double e = escape_estimate(medium, p, p.d, rng); e > 0)
-        out.add(p.d, order, first_class, weight * e, delta);
+      tally_escape(medium, p, order, first_class, weight, delta, rng, out);
     if (order >= s.roulette_from) {
       const double q = std::min(1.0, weight.max());
       if (q < 1) {

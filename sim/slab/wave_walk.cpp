@@ -13,6 +13,7 @@
 #include "models/sggx/hg_phase.h"
 #include "models/sggx/sggx_distribution.h"
 #include "sim/slab/depth_profile.h"
+#include "sim/slab/next_event.h"
 #include "sim/slab/substrate.h"
 #include "sim/slab/voxel_density.h"
 #include "sim/slab/wave_grid_flights.h"
@@ -173,12 +174,26 @@ MCREF_WAVE_STAGE void scatter(Lanes& L, bool from_b, int n, const Stack& l, int 
   else scatter_stack<kMaxLayers>(L, from_b, n, l, max_order, roulette_from);
 }
 
+// The lane's photon (its lateral position where the layers vary laterally, else 0).
+Photon photon(const Paths& p, const Lateral& pos, bool lateral, int i) {
+  Photon ph;
+  ph.x = lateral ? pos.x[i] : 0.0;
+  ph.y = lateral ? pos.y[i] : 0.0;
+  ph.depth = p.depth[i];
+  ph.d = {p.dx[i], p.dy[i], p.dz[i]};
+  ph.layer = static_cast<int>(p.layer[i]);
+  return ph;
+}
+
 // A lane whose flight left its layer (kScalar), as walk() does it: into the
 // next layer through an inner face; the tally at the top, or at the bottom
-// without a substrate; else a substrate bounce. Returns the lane's new status.
-double leave_or_bounce(Paths& p, Streams& r, double ev, int i, const SlabMedium& medium,
-                             const WalkSettings& s, BrdfAccumulator& out) {
+// without a substrate (with a next-event estimator, only order 0 there); else
+// a substrate bounce (and its next-event tally, before the roulette). Returns
+// the lane's new status.
+double leave_or_bounce(Paths& p, Streams& r, const Lateral& pos, bool lateral, double ev, int i,
+                       const SlabMedium& medium, const WalkSettings& s, BrdfAccumulator& out) {
   const Vec3 d{p.dx[i], p.dy[i], p.dz[i]};
+  const bool next_event = s.estimator != SlabEstimator::kAnalog;
   const int order = static_cast<int>(p.order[i]), first_class = static_cast<int>(p.first_class[i]);
   if (ev == kLost) return kEnded;
   const double next = p.layer[i] + (ev == kTop ? -1 : 1);
@@ -187,7 +202,8 @@ double leave_or_bounce(Paths& p, Streams& r, double ev, int i, const SlabMedium&
     return kGoesOn;
   }
   if (ev == kTop || !medium.has_substrate()) {
-    if (ev == kTop || order > 0 || s.delta_transmission) out.add(d, order, first_class, p.weight(i), p.delta[i] != 0);
+    const bool tally = ev == kTop ? !next_event || order == 0 : order > 0 ? !next_event : s.delta_transmission;
+    if (tally) out.add(d, order, first_class, p.weight(i), p.delta[i] != 0);
     return kEnded;
   }
   if (s.max_order > 0 && order >= s.max_order) return kEnded;
@@ -199,6 +215,11 @@ double leave_or_bounce(Paths& p, Streams& r, double ev, int i, const SlabMedium&
   p.wr[i] *= sc.weight.r, p.wg[i] *= sc.weight.g, p.wb[i] *= sc.weight.b;
   p.dx[i] = sc.wo.x, p.dy[i] = sc.wo.y, p.dz[i] = sc.wo.z;
   p.delta[i] = p.delta[i] && sc.specular;
+  if (next_event) {
+    Rng lane(r.next(i));  // (draws only through laterally varying layers)
+    tally_escape(medium, photon(p, pos, lateral, i), order + 1, static_cast<int>(p.first_class[i]), p.weight(i),
+                 p.delta[i] != 0, lane, out);
+  }
   return roulette(p.wr[i], p.wg[i], p.wb[i], order + 1, s.roulette_from, r.uniform(i)) > 0 ? kGoesOn : kEnded;
 }
 
@@ -284,6 +305,22 @@ std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi
     pos.x[i] = r.uniform(i) * g.tile;
     pos.y[i] = r.uniform(i) * g.tile;
   };
+  // The next-event tallies of a lane's phase-function event (walk.h), from its
+  // path before the event and after it (with the roulette's outcome: a path it
+  // ended tallies no escape along its sampled direction; one it kept carries the
+  // weight divided by the survival probability, so the expectation is walk()'s,
+  // which tallies before the roulette). The lane's stream seeds the event's draws.
+  const bool next_event = s.estimator != SlabEstimator::kAnalog;
+  const auto tally_next_event = [&](const Paths& in, const Paths& p, bool goes_on, int i) {
+    Rng lane(r.next(i));
+    const Photon ph = photon(p, pos, g.lateral, i);
+    const int order = static_cast<int>(p.order[i]), first_class = static_cast<int>(p.first_class[i]);
+    if (s.estimator == SlabEstimator::kNextEventMis)
+      tally_next_event_mis(medium, ph, {-in.dx[i], -in.dy[i], -in.dz[i]}, in.weight(i), goes_on ? p.weight(i) : Rgb(0.0),
+                           order, first_class, lane, out);
+    else if (goes_on)
+      tally_escape(medium, ph, order, first_class, p.weight(i), false, lane, out);
+  };
   int n = static_cast<int>(std::min<std::uint64_t>(N, count));
   bool in_b = false;  // the paths are in L->b (else L->a)
   for (int i = 0; i < n; ++i) start(L->a, i);
@@ -309,13 +346,16 @@ std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi
       fly(*L, in_b, n, l);
     }
     scatter(*L, in_b, n, l, s.max_order, s.roulette_from);
+    const Paths& before = in_b ? L->b : L->a;  // (the scatter stage left them as they were)
     in_b = !in_b;
     Paths& p = in_b ? L->b : L->a;
     // Ended lanes take the next path, or the last lane (already handled: the
     // loop runs downward) when none is left.
     for (int i = n - 1; i >= 0; --i) {
       double status = st.status[i];
-      if (status == kScalar) status = leave_or_bounce(p, r, st.event[i], i, medium, s, out);
+      if (next_event && p.order[i] > before.order[i])  // a phase-function event
+        tally_next_event(before, p, status == kGoesOn, i);
+      if (status == kScalar) status = leave_or_bounce(p, r, pos, g.lateral, st.event[i], i, medium, s, out);
       if (status != kEnded) continue;
       events += static_cast<std::uint64_t>(p.order[i]);
       if (started < count) {

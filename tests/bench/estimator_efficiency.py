@@ -100,7 +100,8 @@ def main():
     which.add_argument("--entries", nargs="+", help="LAYERS:INDEX, e.g. 1:357 2:220")
     which.add_argument("--experiments", nargs="+", help="experiment TOML files, run as they are")
     ap.add_argument("--estimators", nargs="+", default=["analog", "next_event"],
-                    help="values of [geometry] estimator, or KEY=VALUE for another [geometry] key (e.g. walk=wave)")
+                    help="values of [geometry] estimator, or KEY=VALUE for another [geometry] key (e.g. walk=wave), "
+                         "several joined by + (e.g. walk=wave+next_event_mis)")
     ap.add_argument("--reps", type=int, default=5)
     ap.add_argument("--stride-theta", type=int, default=4)
     ap.add_argument("--stride-phi", type=int, default=8)
@@ -134,9 +135,11 @@ def main():
                 order = args.estimators if rep % 2 == 0 else args.estimators[::-1]
                 for est in order:
                     out = os.path.join(work, "run.h5")
-                    key, value = est.split("=") if "=" in est else ("estimator", est)
-                    _, _, cpu = timed_run([args.mcref, "simulate", exp, "-o", out, "--threads", "1", "--quiet",
-                                           "--set", f"geometry.{key}=\"{value}\""] + settings)
+                    sets = []
+                    for item in est.split("+"):
+                        key, value = item.split("=") if "=" in item else ("estimator", item)
+                        sets += ["--set", f"geometry.{key}=\"{value}\""]
+                    _, _, cpu = timed_run([args.mcref, "simulate", exp, "-o", out, "--threads", "1", "--quiet"] + sets + settings)
                     ms, total = errors(out)
                     runs[est].append((cpu, np.nanmedian(ms), np.nanmedian(total), int(np.sum(ms > 0))))
                     cells[est].append((cpu, ms, total))

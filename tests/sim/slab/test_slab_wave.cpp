@@ -5,8 +5,9 @@
 // per-component albedo and delta tables compared through the quadrature of
 // both standard errors (RGB, each channel's chi2 on its own, Bonferroni over
 // the three: a path's channels are one sample): p >= alpha and the Sidak |z| bound at alpha, with
-// alpha = 0.01 / 74, 74 being the number of table comparisons below (a
-// family-wise false-failure rate of 1 %; at alpha = 0.001 per table, about 6 %).
+// alpha = 0.01 / 194, 194 being the number of table comparisons below (a
+// family-wise false-failure rate of 1 %). The same for the next-event estimators
+// (walk.h) in both walks, for every phase function and substrate (seeds 101 and 102).
 // Then the white furnace, thread-count independence and the config checks.
 #include <cmath>
 
@@ -45,7 +46,7 @@ Experiment experiment(const std::string& substrate, const std::string& phase, co
                           measure_extra);
 }
 
-constexpr double kAlpha = 0.01 / 74;
+constexpr double kAlpha = 0.01 / 194;
 
 class WaveAgainstScalar : public testing::TestWithParam<std::tuple<int, int>> {};
 
@@ -63,6 +64,22 @@ TEST_P(WaveAgainstScalar, SameTablesWithinStatistics) {
 
 INSTANTIATE_TEST_SUITE_P(PhasesAndSubstrates, WaveAgainstScalar,
                          testing::Combine(testing::Range(0, 5), testing::Range(0, 4)));
+
+// {phase, substrate, estimator}: next_event (0) or next_event_mis (1).
+class WaveNextEventAgainstScalar : public testing::TestWithParam<std::tuple<int, int, int>> {};
+
+TEST_P(WaveNextEventAgainstScalar, SameTablesWithinStatistics) {
+  const auto [phase, substrate, mis] = GetParam();
+  const std::string geometry = std::string("estimator = \"") + (mis ? "next_event_mis" : "next_event") + "\"\n" + kSubstrates[substrate];
+  std::vector<std::string> names{"brdf", "brdf_albedo"};
+  if (substrate == 0) names.insert(names.end(), {"brdf_btdf", "brdf_btdf_albedo", "brdf_btdf_delta"});
+  if (substrate == 2) names.push_back("brdf_delta");
+  slab_test::expect_same(slab_test::run(experiment(geometry, kPhases[phase], "scalar", 101)),
+                         slab_test::run(experiment(geometry, kPhases[phase], "wave", 102)), names, false, kAlpha);
+}
+
+INSTANTIATE_TEST_SUITE_P(PhasesSubstratesAndEstimators, WaveNextEventAgainstScalar,
+                         testing::Combine(testing::Range(0, 5), testing::Range(0, 4), testing::Range(0, 2)));
 
 // Stacks: {substrate, layers}; layers cross in the wave walk's scalar pass.
 const char* const kStacks[][2] = {
@@ -120,6 +137,7 @@ TEST(WaveWalk, BitIdenticalForAnyThreadCount) {
   slab_test::expect_bit_identical_threads(experiment(kSubstrates[3], kPhases[0], "wave", 46));
   slab_test::expect_bit_identical_threads(experiment(kSubstrates[0], kPhases[4], "wave", 47));
   slab_test::expect_bit_identical_threads(stack_experiment(kStacks[1][0], kStacks[1][1], "wave", 49));
+  slab_test::expect_bit_identical_threads(experiment(std::string("estimator = \"next_event_mis\"\n") + kSubstrates[1], kPhases[0], "wave", 50));
 }
 
 // walk = "wave" takes up to 4 layers of one phase function; anything
