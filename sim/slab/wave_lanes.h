@@ -87,6 +87,7 @@ struct Lateral {
 struct Steps {
   alignas(64) double event[N];   // outcome of the flight
   alignas(64) double status[N];  // kGoesOn, kEnded, or kScalar (left the layer: scalar code decides)
+  alignas(64) double keep[N];    // a phase event's survival probability in the roulette (0: an invalid sample)
 };
 
 // Everything the stages touch, in one object (so the compiler sees that no two

@@ -25,14 +25,18 @@ using namespace wave;
 
 namespace {
 
-// Russian roulette once order >= from (walk.h): survives with probability
-// p = min(1, max weight), the weight divided by p. A zero weight (p = 0) ends
-// the path there; at lower orders the path goes on, adding zeros to the tally,
-// where walk() ends it. u uniform in [0, 1). Returns 1 if the path goes on,
-// else 0 (flags are doubles in lane code: booleans combined there stop the
-// vectoriser).
-inline double roulette(double& r, double& g, double& b, double order, double from, double u) {
-  const double p = order >= from ? std::min(1.0, std::max(r, std::max(g, b))) : 1.0;
+// The Russian roulette's survival probability (walk.h): p = min(1, max weight)
+// once order >= from, else 1.
+inline double survival(double r, double g, double b, double order, double from) {
+  return order >= from ? std::min(1.0, std::max(r, std::max(g, b))) : 1.0;
+}
+
+// Russian roulette: survives with probability p (survival()), the weight
+// divided by p. A zero weight (p = 0) ends the path there; at lower orders the
+// path goes on, adding zeros to the tally, where walk() ends it. u uniform in
+// [0, 1). Returns 1 if the path goes on, else 0 (flags are doubles in lane
+// code: booleans combined there stop the vectoriser).
+inline double roulette(double& r, double& g, double& b, double p, double u) {
   const double k = 1 / std::max(p, 0x1p-1022);  // (p = 0: the weights are 0)
   r *= k, g *= k, b *= k;
   return u < p ? 1.0 : 0.0;
@@ -131,7 +135,9 @@ inline void scatter_lanes(Lanes& L, int n, const Stack& stack, int max_order, in
     const double ev = st.event[i], order = in.order[i];
     const double scatter = ev == kCollision ? (order >= cap ? 0.0 : 1.0) : 0.0;  // 1: a phase-function event
     double wr = in.wr[i] * fr, wg = in.wg[i] * fg, wb = in.wb[i] * fb;
-    const double alive = valid * roulette(wr, wg, wb, order + 1, from, u_roulette);
+    const double keep = survival(wr, wg, wb, order + 1, from);
+    const double alive = valid * roulette(wr, wg, wb, keep, u_roulette);
+    st.keep[i] = valid * keep;
     const bool s = scatter > 0;
     st.status[i] = ev == kNull ? kGoesOn : ev != kCollision ? kScalar : scatter * alive > 0 ? kGoesOn : kEnded;
     out.depth[i] = in.depth[i];
@@ -185,6 +191,15 @@ Photon photon(const Paths& p, const Lateral& pos, bool lateral, int i) {
   return ph;
 }
 
+// The next-event tally of a lane's substrate bounce (its lane's stream seeds the
+// draws, made only through laterally varying layers).
+[[gnu::noinline]] void tally_bounce(const Paths& p, Streams& r, const Lateral& pos, bool lateral, int i,
+                                   const SlabMedium& medium, BrdfAccumulator& out) {
+  Rng lane(r.next(i));
+  tally_escape(medium, photon(p, pos, lateral, i), static_cast<int>(p.order[i]), static_cast<int>(p.first_class[i]),
+               p.weight(i), p.delta[i] != 0, lane, out);
+}
+
 // A lane whose flight left its layer (kScalar), as walk() does it: into the
 // next layer through an inner face; the tally at the top, or at the bottom
 // without a substrate (with a next-event estimator, only order 0 there); else
@@ -215,12 +230,9 @@ double leave_or_bounce(Paths& p, Streams& r, const Lateral& pos, bool lateral, d
   p.wr[i] *= sc.weight.r, p.wg[i] *= sc.weight.g, p.wb[i] *= sc.weight.b;
   p.dx[i] = sc.wo.x, p.dy[i] = sc.wo.y, p.dz[i] = sc.wo.z;
   p.delta[i] = p.delta[i] && sc.specular;
-  if (next_event) {
-    Rng lane(r.next(i));  // (draws only through laterally varying layers)
-    tally_escape(medium, photon(p, pos, lateral, i), order + 1, static_cast<int>(p.first_class[i]), p.weight(i),
-                 p.delta[i] != 0, lane, out);
-  }
-  return roulette(p.wr[i], p.wg[i], p.wb[i], order + 1, s.roulette_from, r.uniform(i)) > 0 ? kGoesOn : kEnded;
+  if (next_event) tally_bounce(p, r, pos, lateral, i, medium, out);
+  const double keep = survival(p.wr[i], p.wg[i], p.wb[i], order + 1, s.roulette_from);
+  return roulette(p.wr[i], p.wg[i], p.wb[i], keep, r.uniform(i)) > 0 ? kGoesOn : kEnded;
 }
 
 }  // namespace
@@ -306,20 +318,19 @@ std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi
     pos.y[i] = r.uniform(i) * g.tile;
   };
   // The next-event tallies of a lane's phase-function event (walk.h), from its
-  // path before the event and after it (with the roulette's outcome: a path it
-  // ended tallies no escape along its sampled direction; one it kept carries the
-  // weight divided by the survival probability, so the expectation is walk()'s,
-  // which tallies before the roulette). The lane's stream seeds the event's draws.
+  // path before the event and after it, with the weight before the roulette
+  // (after it, times its survival probability), as walk() tallies them: whether
+  // or not the roulette keeps the path. The lane's stream seeds the event's draws.
   const bool next_event = s.estimator != SlabEstimator::kAnalog;
-  const auto tally_next_event = [&](const Paths& in, const Paths& p, bool goes_on, int i) {
+  const auto tally_next_event = [&](const Paths& in, const Paths& p, int i) {
     Rng lane(r.next(i));
     const Photon ph = photon(p, pos, g.lateral, i);
     const int order = static_cast<int>(p.order[i]), first_class = static_cast<int>(p.first_class[i]);
+    const Rgb after = p.weight(i) * st.keep[i];
     if (s.estimator == SlabEstimator::kNextEventMis)
-      tally_next_event_mis(medium, ph, {-in.dx[i], -in.dy[i], -in.dz[i]}, in.weight(i), goes_on ? p.weight(i) : Rgb(0.0),
-                           order, first_class, lane, out);
-    else if (goes_on)
-      tally_escape(medium, ph, order, first_class, p.weight(i), false, lane, out);
+      tally_next_event_mis(medium, ph, {-in.dx[i], -in.dy[i], -in.dz[i]}, in.weight(i), after, order, first_class, lane, out);
+    else
+      tally_escape(medium, ph, order, first_class, after, false, lane, out);
   };
   int n = static_cast<int>(std::min<std::uint64_t>(N, count));
   bool in_b = false;  // the paths are in L->b (else L->a)
@@ -349,12 +360,13 @@ std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi
     const Paths& before = in_b ? L->b : L->a;  // (the scatter stage left them as they were)
     in_b = !in_b;
     Paths& p = in_b ? L->b : L->a;
+    if (next_event)
+      for (int i = 0; i < n; ++i)
+        if (p.order[i] > before.order[i] && st.keep[i] > 0) tally_next_event(before, p, i);  // a phase event (a valid sample)
     // Ended lanes take the next path, or the last lane (already handled: the
     // loop runs downward) when none is left.
     for (int i = n - 1; i >= 0; --i) {
       double status = st.status[i];
-      if (next_event && p.order[i] > before.order[i])  // a phase-function event
-        tally_next_event(before, p, status == kGoesOn, i);
       if (status == kScalar) status = leave_or_bounce(p, r, pos, g.lateral, st.event[i], i, medium, s, out);
       if (status != kEnded) continue;
       events += static_cast<std::uint64_t>(p.order[i]);

@@ -6,8 +6,8 @@
 // AVX2 and baseline x86-64, chosen at run time, the same bits on each); the
 // substrate bounces, the tally and the refill of lanes whose path ended are
 // scalar. Same physics, settings and tally as walk(), its estimators too (the
-// next-event tallies in the scalar pass, sim/slab/next_event.h; after a phase
-// event's roulette, where walk() tallies before it: the same expectation); its
+// next-event tallies in the scalar pass, sim/slab/next_event.h, with the
+// weight before the roulette, as walk()'s); its
 // own random streams (one xoshiro256** per lane, seeded from the chunk's
 // generator; a next-event tally's draws from a generator seeded by its lane's
 // stream), so tables agree with walk()'s within statistics, and are
