@@ -6,9 +6,19 @@
 #include "models/core/rng.h"
 #include "sim/slab/free_flight.h"
 #include "sim/slab/medium.h"
+#include "sim/slab/walk.h"
 #include "sim/tally/brdf_tally.h"
 
 namespace mcref::volume {
+
+// Whether a path leaving the stack (through the top, or through the bottom
+// without a substrate) is tallied where it leaves: always by the analog
+// estimator; by the next-event ones only unscattered (order 0, which they do
+// not estimate), through the bottom only if delta_transmission.
+inline bool tallies_exit(const WalkSettings& s, bool top, int order) {
+  const bool next_event = s.estimator != SlabEstimator::kAnalog;
+  return top ? !next_event || order == 0 : order > 0 ? !next_event : s.delta_transmission;
+}
 
 // next event: weight x the escape probability along p.d (sim/slab/escape.h),
 // in p.d's bin and the event's order.

@@ -25,11 +25,11 @@ int walk(const SlabMedium& medium, FreeFlight& flight, const WalkSettings& s, Ve
     const Flight f = flight.fly(p, rng);
     if (f == Flight::kLost) return order;
     if (f == Flight::kExitTop) {
-      if (!next_event || order == 0) out.add(p.d, order, first_class, weight, delta);
+      if (tallies_exit(s, true, order)) out.add(p.d, order, first_class, weight, delta);
       return order;
     }
     if (f == Flight::kExitBottom && !medium.has_substrate()) {
-      if (order > 0 ? !next_event : s.delta_transmission) out.add(p.d, order, first_class, weight, delta);
+      if (tallies_exit(s, false, order)) out.add(p.d, order, first_class, weight, delta);
       return order;
     }
     // A scattering event: in a layer, or on the substrate.

@@ -208,7 +208,6 @@ Photon photon(const Paths& p, const Lateral& pos, bool lateral, int i) {
 double leave_or_bounce(Paths& p, Streams& r, const Lateral& pos, bool lateral, double ev, int i,
                        const SlabMedium& medium, const WalkSettings& s, BrdfAccumulator& out) {
   const Vec3 d{p.dx[i], p.dy[i], p.dz[i]};
-  const bool next_event = s.estimator != SlabEstimator::kAnalog;
   const int order = static_cast<int>(p.order[i]), first_class = static_cast<int>(p.first_class[i]);
   if (ev == kLost) return kEnded;
   const double next = p.layer[i] + (ev == kTop ? -1 : 1);
@@ -217,8 +216,7 @@ double leave_or_bounce(Paths& p, Streams& r, const Lateral& pos, bool lateral, d
     return kGoesOn;
   }
   if (ev == kTop || !medium.has_substrate()) {
-    const bool tally = ev == kTop ? !next_event || order == 0 : order > 0 ? !next_event : s.delta_transmission;
-    if (tally) out.add(d, order, first_class, p.weight(i), p.delta[i] != 0);
+    if (tallies_exit(s, ev == kTop, order)) out.add(d, order, first_class, p.weight(i), p.delta[i] != 0);
     return kEnded;
   }
   if (s.max_order > 0 && order >= s.max_order) return kEnded;
@@ -230,7 +228,7 @@ double leave_or_bounce(Paths& p, Streams& r, const Lateral& pos, bool lateral, d
   p.wr[i] *= sc.weight.r, p.wg[i] *= sc.weight.g, p.wb[i] *= sc.weight.b;
   p.dx[i] = sc.wo.x, p.dy[i] = sc.wo.y, p.dz[i] = sc.wo.z;
   p.delta[i] = p.delta[i] && sc.specular;
-  if (next_event) tally_bounce(p, r, pos, lateral, i, medium, out);
+  if (s.estimator != SlabEstimator::kAnalog) tally_bounce(p, r, pos, lateral, i, medium, out);
   const double keep = survival(p.wr[i], p.wg[i], p.wb[i], order + 1, s.roulette_from);
   return roulette(p.wr[i], p.wg[i], p.wb[i], keep, r.uniform(i)) > 0 ? kGoesOn : kEnded;
 }

@@ -403,14 +403,12 @@ TEST(NextEvent, BitIdenticalForAnyThreadCount) {
 TEST(NextEvent, RejectsWhatItDoesNotCover) {
   const std::string layer = "[[geometry.layer]]\nphase = \"isotropic\"\n";
   const std::string run = "[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 10\n";
-  for (const std::string& geometry : {"[geometry]\nkind = \"slab\"\nestimator = \"nee\"\n" + layer + run}) {
-    try {
-      parse_experiment(geometry, "bad.toml");
-      ADD_FAILURE() << "accepted: " << geometry;
-    } catch (const ConfigError& e) {
-      EXPECT_NE(std::string(e.what()).find("geometry.estimator"), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("bad.toml"), std::string::npos) << e.what();
-    }
+  try {
+    parse_experiment("[geometry]\nkind = \"slab\"\nestimator = \"nee\"\n" + layer + run, "bad.toml");
+    ADD_FAILURE() << "accepted estimator = \"nee\"";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("geometry.estimator"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bad.toml"), std::string::npos) << e.what();
   }
   EXPECT_NO_THROW(parse_experiment("[geometry]\nkind = \"slab\"\nestimator = \"next_event_mis\"\nbackend = \"openvdb\"\n" + layer + run,
                                    "good.toml"));
