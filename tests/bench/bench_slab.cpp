@@ -18,6 +18,9 @@
 //  slab/pair/walks/<medium> : the heterogeneous slab through the scalar walk, then
 //                     through the wave walk (counters as above: wave / scalar;
 //                     events/path_hom is the scalar walk's there).
+//  slab/pair/cross/<medium> : the homogeneous slab through the scalar walk (the
+//                     default walk), then the heterogeneous one through the wave walk
+//                     (counters as above: het wave / hom scalar).
 //  slab/pair/exact/linear : the linear profile in the scalar walk, delta-tracked
 //                     (side 0), then flown exactly (sim/slab/depth_profile.h).
 //  slab/flight/<medium> : free flights alone, 1 thread: 2^16 photons spread over
@@ -166,15 +169,21 @@ void report_spread(benchmark::State& state, const std::string& name, const std::
   state.counters[name + "_max"] = *std::max_element(v.begin(), v.end());
 }
 
-// Two runs back to back, the order alternating: side 0 (the homogeneous slab,
-// with `walks` the heterogeneous one through the scalar walk, with `tracked` the
-// heterogeneous one delta-tracked) and side 1 (the heterogeneous slab; through
-// the wave walk if `wave`, side 0 too unless `walks`).
-void pair(benchmark::State& state, std::string kind, bool wave, bool walks = false, bool tracked = false) {
+// What slab/pair runs on each side: side 0 the homogeneous slab (or the
+// heterogeneous one, delta-tracked if `tracked`), side 1 the heterogeneous
+// slab; each through the wave walk or the scalar walk.
+struct Sides {
+  bool het0 = false, tracked0 = false, wave0 = false, wave1 = false;
+};
+constexpr Sides kScalar{}, kWave{false, false, true, true}, kWalks{true, false, false, true},
+    kTracked{true, true, false, false}, kCross{false, false, false, true};
+
+// Two runs back to back, the order alternating: side 0 and side 1 (Sides).
+void pair(benchmark::State& state, std::string kind, Sides sides) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
   const volume::SlabMedium homogeneous(slab(false).slab);
   const std::unique_ptr<volume::SlabMedium> het = heterogeneous(kind);
-  const std::unique_ptr<volume::SlabMedium> het_tracked = tracked ? heterogeneous(kind, false) : nullptr;
+  const std::unique_ptr<volume::SlabMedium> het_tracked = sides.tracked0 ? heterogeneous(kind, false) : nullptr;
   const std::vector<Vec3> dirs{spherical_direction(30 * kPi / 180, 0)};
   using clock = std::chrono::steady_clock;
   double events[2] = {0, 0};
@@ -185,8 +194,8 @@ void pair(benchmark::State& state, std::string kind, bool wave, bool walks = fal
     double wall[2], cpu[2], e[2];
     for (int k = 0; k < 2; ++k) {
       const int which = (k + static_cast<int>(it)) % 2;  // side
-      const volume::SlabMedium& medium = which || walks ? *het : tracked ? *het_tracked : homogeneous;
-      const bool side_wave = wave && (which || !walks);
+      const volume::SlabMedium& medium = which ? *het : sides.tracked0 ? *het_tracked : sides.het0 ? *het : homogeneous;
+      const bool side_wave = which ? sides.wave1 : sides.wave0;
       const auto t0 = clock::now();
       const double c0 = process_cpu_seconds();
       e[which] = static_cast<double>(engine_paths(medium, dirs, kPairPaths, it, side_wave));
@@ -417,13 +426,15 @@ void bsdf32(benchmark::State& state) {
 
 BENCHMARK_CAPTURE(engine, homogeneous, false)->Name("slab/homogeneous")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(engine, openvdb, true)->Name("slab/openvdb")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
-BENCHMARK_CAPTURE(pair, linear, "linear", false)->Name("slab/pair/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(pair, lateral, "lateral", false)->Name("slab/pair/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(pair, wave_linear, "linear", true)->Name("slab/pair/wave/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(pair, wave_lateral, "lateral", true)->Name("slab/pair/wave/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(pair, walks_linear, "linear", true, true)->Name("slab/pair/walks/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(pair, walks_lateral, "lateral", true, true)->Name("slab/pair/walks/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(pair, exact_linear, "linear", false, false, true)->Name("slab/pair/exact/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, linear, "linear", kScalar)->Name("slab/pair/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, lateral, "lateral", kScalar)->Name("slab/pair/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, wave_linear, "linear", kWave)->Name("slab/pair/wave/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, wave_lateral, "lateral", kWave)->Name("slab/pair/wave/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, walks_linear, "linear", kWalks)->Name("slab/pair/walks/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, walks_lateral, "lateral", kWalks)->Name("slab/pair/walks/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, cross_linear, "linear", kCross)->Name("slab/pair/cross/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, cross_lateral, "lateral", kCross)->Name("slab/pair/cross/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(pair, exact_linear, "linear", kTracked)->Name("slab/pair/exact/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(flights, linear, "linear")->Name("slab/flight/linear")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(flights, lateral, "lateral")->Name("slab/flight/lateral")->Iterations(9)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(floor_walk)->Name("slab/floor")->UseRealTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
