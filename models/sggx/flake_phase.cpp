@@ -4,17 +4,6 @@
 
 namespace mcref::sggx {
 
-double flake_reflectance(double gamma, double f0, Vec3 wi, Vec3 h) {
-  return gamma * schlick(f0, std::fabs(dot(wi, h)));
-}
-
-double specular_flake_phase(const Sggx& s, Vec3 wi, Vec3 wo) {
-  const Vec3 sum = wi + wo;
-  const double n2 = dot(sum, sum);
-  if (!(n2 > 1e-24)) return 0;
-  return ndf(s, sum) / (4 * projected_area(s, wi));  // ndf() normalises its argument
-}
-
 double specular_flake_phase_weighted(const Sggx& s, double gamma, double f0, Vec3 wi, Vec3 wo) {
   const Vec3 sum = wi + wo;
   const double n2 = dot(sum, sum);

@@ -18,12 +18,6 @@ PhaseSample sample_isotropic_phase(double albedo, double u1, double u2) {
   return r;
 }
 
-double hg_phase(double g, Vec3 wi, Vec3 wo) {
-  const double c = -dot(wi, wo);
-  const double d = 1 + g * g - 2 * g * c;
-  return (1 - g * g) / (4 * kPi * d * std::sqrt(d));
-}
-
 PhaseSample sample_hg_phase(double g, double albedo, Vec3 wi, double u1, double u2) {
   PhaseSample r;
   const double c = sample_hg_cos_theta(g, u1);

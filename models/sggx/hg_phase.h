@@ -7,6 +7,7 @@
 // angle is between the propagation directions -wi and wo:
 //   cos(theta) = dot(-wi, wo);  g > 0 means forward scattering (wo near -wi).
 #include <algorithm>
+#include <cmath>
 
 #include "models/core/vec.h"
 #include "models/sggx/phase_sample.h"
@@ -19,7 +20,11 @@ double isotropic_phase();
 PhaseSample sample_isotropic_phase(double albedo, double u1, double u2);
 
 // p(cos) = (1 - g^2) / (4 pi (1 + g^2 - 2 g cos)^(3/2)), cos = dot(-wi, wo); |g| < 1.
-double hg_phase(double g, Vec3 wi, Vec3 wo);
+inline double hg_phase(double g, Vec3 wi, Vec3 wo) {
+  const double c = -dot(wi, wo);
+  const double d = 1 + g * g - 2 * g * c;
+  return (1 - g * g) / (4 * kPi * d * std::sqrt(d));
+}
 // Cosine of the scattering angle for uniform u by exact CDF inversion, written
 // without division by g (stable at g -> 0, where it tends to 2u - 1).
 // CDF of cos in [-1, 1]: P(c) = (1 - g^2)/(2g) [ (1 + g^2 - 2gc)^-1/2 - (1 + g)^-1 ].

@@ -41,11 +41,6 @@ Sggx fiber_like(double alpha, Vec3 wp) {
   return from_matrix(identity3() + outer(a, a) * (alpha * alpha - 1));
 }
 
-double ndf(const Sggx& s, Vec3 m) {
-  const double q = quadratic_form(s.S_inv, m) / dot(m, m);
-  return 1.0 / (kPi * s.sqrt_det * q * q);
-}
-
 double ndf_eq7_as_printed(const Sggx& s, double alpha, Vec3 m) {
   const double q = quadratic_form(s.S_inv, m) / dot(m, m);
   return 1.0 / (kPi * alpha * q * q);

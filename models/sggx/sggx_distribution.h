@@ -38,7 +38,12 @@ Sggx fiber_like(double alpha, Vec3 wp);
 
 // D(m) = 1 / (pi sqrt(det S) (m^T S^-1 m)^2)   (Heitz 2015 Eq. 9; SpongeCake Eq. 7
 // in the general form; m need not be normalised: D is evaluated at m/|m|).
-double ndf(const Sggx& s, Vec3 m);
+// (From S^-1 and sqrt(det S) alone: the wave walk's lanes hold no Sggx.)
+inline double ndf(const Mat3& S_inv, double sqrt_det, Vec3 m) {
+  const double q = quadratic_form(S_inv, m) / dot(m, m);
+  return 1.0 / (kPi * sqrt_det * q * q);
+}
+inline double ndf(const Sggx& s, Vec3 m) { return ndf(s.S_inv, s.sqrt_det, m); }
 // SpongeCake Eq. 7 exactly as printed, 1 / (pi alpha q^2), q = m^T S^-1 m.
 // Equals ndf() for fibre-like S (sqrt det S = alpha) but is alpha * ndf() for
 // surface-like S (sqrt det S = alpha^2). For reports only.

@@ -90,6 +90,17 @@ struct Steps {
   alignas(64) double keep[N];    // a phase event's survival probability in the roulette (0: an invalid sample)
 };
 
+// The next-event tallies of each lane's phase event (walk.h's estimators), as the
+// vector stage computes them in a stack of homogeneous layers, for the scalar
+// pass to add: the factor of the weight after the event along the new direction,
+// and (next_event_mis) the uniform direction and its contribution. 0: no tally.
+struct NextEvents {
+  alignas(64) double along_d[N];
+  alignas(64) double ux[N], uy[N], uz[N];
+  alignas(64) double ur[N], ug[N], ub[N];
+  alignas(64) double sigma_wi[N];  // (scratch: sigma(wi) of the lane's layer, SGGX)
+};
+
 // Everything the stages touch, in one object (so the compiler sees that no two
 // arrays overlap). The scatter stage reads one of a and b and writes the other.
 struct Lanes {
@@ -97,6 +108,7 @@ struct Lanes {
   Streams r;
   Steps st;
   Lateral pos;
+  NextEvents ne;
   template <bool kB>
   Paths& paths() {
     if constexpr (kB) return b; else return a;
@@ -113,6 +125,7 @@ struct Stack {
   int layers;
   double top[kMaxLayers], bottom[kMaxLayers], density[kMaxLayers], g[kMaxLayers];
   double S[9][kMaxLayers], L[9][kMaxLayers];  // SGGX matrix and its Cholesky factor, row-major
+  double S_inv[9][kMaxLayers], sqrt_det[kMaxLayers];  // its inverse and sqrt(det S) (the NDF)
   double ar[kMaxLayers], ag[kMaxLayers], ab[kMaxLayers], fr[kMaxLayers], fg[kMaxLayers], fb[kMaxLayers];
 };
 

@@ -1,11 +1,13 @@
 #include "sim/slab/wave_walk.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
 
 #include "models/core/frame.h"
+#include "models/core/simd_exp.h"
 #include "models/core/simd_log.h"
 #include "models/core/small_angle.h"
 #include "models/core/warp.h"
@@ -180,6 +182,126 @@ MCREF_WAVE_STAGE void scatter(Lanes& L, bool from_b, int n, const Stack& l, int 
   else scatter_stack<kMaxLayers>(L, from_b, n, l, max_order, roulette_from);
 }
 
+// The probability of escaping the stack from the lane's point along w, exp(-tau)
+// (escape.cpp's escape_probability through homogeneous layers): 0 for w.z = 0,
+// or downward above a substrate (down = 0; else 1).
+template <bool kSggx, int K>
+inline double escape_lane(const Stack& l, double layer, double depth, Vec3 w, double down) {
+  const bool up = w.z > 0;
+  const double inv_mu = 1 / std::fabs(w.z);
+  double tau = 0;
+#pragma GCC unroll 4
+  for (int k = 0; k < K; ++k) {  // the layers from the lane's to the face it leaves by
+    const double from = layer == k ? depth : up ? l.bottom[k] : l.top[k], to = up ? l.top[k] : l.bottom[k];
+    double sigma = 1;
+    if constexpr (kSggx) {
+      const double(&S)[9][kMaxLayers] = l.S;  // (written out: a loop here would stay a loop for K > 1)
+      const sggx::Mat3 Sk{{{S[0][k], S[1][k], S[2][k]}, {S[3][k], S[4][k], S[5][k]}, {S[6][k], S[7][k], S[8][k]}}};
+      sigma = std::sqrt(std::max(0.0, sggx::quadratic_form(Sk, w)));
+    }
+    // (The path length capped: an empty layer along a grazing w adds 0, not NaN; no
+    // select on the layer's density, whose branch the vectoriser would not remove.)
+    const double t = l.density[k] * sigma * std::min(std::fabs(to - from) * inv_mu, DBL_MAX);
+    tau += up ? (k <= layer ? t : 0.0) : (k >= layer ? t : 0.0);  // (a select of booleans stops the vectoriser)
+  }
+  const double e = simd_exp_nonpositive(-tau);
+  return w.z > 0 ? e : w.z < 0 ? e * down : 0.0;  // (a select on a bool argument stops the vectoriser)
+}
+
+// The phase function of the lane's layer, wi -> wo (phase.cpp's eval); for SGGX
+// flakes sggx::specular_flake_phase, D(h) / (4 sigma(wi)) (Eq. 4), given sigma(wi).
+template <SlabPhase kPhase, int K>
+inline double phase_lane(const Stack& l, double k, Vec3 wi, Vec3 wo, double sigma_wi) {
+  if constexpr (kPhase == SlabPhase::kSggxSurface) {  // both SGGX kinds
+    const Vec3 sum = wi + wo;
+    const double D = sggx::ndf(pick_matrix<K>(l.S_inv, k), pick<K>(l.sqrt_det, k), sum);
+    return dot(sum, sum) > 1e-24 ? D / (4 * sigma_wi) : 0.0;
+  } else if constexpr (kPhase == SlabPhase::kHenyeyGreenstein) {
+    return sggx::hg_phase(pick<K>(l.g, k), wi, wo);
+  } else {
+    return 1 / (4 * kPi);
+  }
+}
+
+// The next-event tallies of every lane's phase event, as next_event.cpp's
+// tally_escape (kMis false) and tally_next_event_mis make them, into L.ne, in a
+// stack of homogeneous layers. Made for every lane (the scalar pass adds those
+// of the lanes that scattered); with kMis, two draws per lane for the uniform
+// direction. `in` holds the paths before the event, `p` after it.
+template <SlabPhase kPhase, bool kMis, bool kFromB, int K>
+inline void next_event_lanes(Lanes& L, int n, const Stack& stack, bool substrate) {
+  const Stack l = stack;
+  constexpr bool kSggx = kPhase == SlabPhase::kSggxSurface;
+  const double pdf_u = substrate ? 1 / (2 * kPi) : 1 / (4 * kPi);
+  const double down = substrate ? 0.0 : 1.0, flip = substrate ? -1.0 : 1.0;  // (flags as doubles)
+  const Paths& in = L.paths<kFromB>();
+  const Paths& p = L.paths<!kFromB>();
+  Streams& r = L.r;
+  NextEvents& ne = L.ne;
+  if constexpr (kMis && kSggx)  // sigma(wi) of the layer (a loop of its own: with the others, no loop would vectorise)
+    for (int i = 0; i < n; ++i) ne.sigma_wi[i] = sigma_of<true, K>(l, p.layer[i], {-in.dx[i], -in.dy[i], -in.dz[i]});
+  for (int i = 0; i < n; ++i) {  // along the new direction
+    const Vec3 d{p.dx[i], p.dy[i], p.dz[i]}, wi{-in.dx[i], -in.dy[i], -in.dz[i]};
+    const double e = escape_lane<kSggx, K>(l, p.layer[i], p.depth[i], d, down);
+    if constexpr (!kMis) {
+      ne.along_d[i] = e;
+    } else {
+      const double f = phase_lane<kPhase, K>(l, p.layer[i], wi, d, kSggx ? ne.sigma_wi[i] : 1.0);
+      ne.along_d[i] = e > 0 ? e * f / (f + pdf_u) : 0.0;
+    }
+  }
+  if constexpr (kMis)
+    for (int i = 0; i < n; ++i) {  // along a uniform direction (a loop of its own: one would not vectorise)
+      const Vec3 wi{-in.dx[i], -in.dy[i], -in.dz[i]};
+      const double k = p.layer[i], depth = p.depth[i];
+      const double u1 = r.uniform(i), u2 = r.uniform(i);
+      Vec3 u = sample_uniform_sphere(u1, u2);
+      u.z = std::max(u.z, flip * u.z);  // |u.z| above a substrate
+      const double fu = phase_lane<kPhase, K>(l, k, wi, u, kSggx ? ne.sigma_wi[i] : 1.0);
+      const double eu = escape_lane<kSggx, K>(l, k, depth, u, down);
+      const double w = fu > 0 ? (eu > 0 ? eu * fu / (fu + pdf_u) : 0.0) : 0.0;
+      double ar = pick<K>(l.ar, k), ag = pick<K>(l.ag, k), ab = pick<K>(l.ab, k);
+      if constexpr (kSggx) {  // the flakes' reflectance at h (phase.cpp's albedo)
+        const double c = std::fabs(dot(wi, normalize(wi + u)));
+        ar *= sggx::schlick(pick<K>(l.fr, k), c), ag *= sggx::schlick(pick<K>(l.fg, k), c),
+            ab *= sggx::schlick(pick<K>(l.fb, k), c);
+      }
+      ne.ux[i] = u.x, ne.uy[i] = u.y, ne.uz[i] = u.z;
+      ne.ur[i] = in.wr[i] * ar * w, ne.ug[i] = in.wg[i] * ag * w, ne.ub[i] = in.wb[i] * ab * w;
+    }
+}
+
+template <SlabPhase kPhase, bool kMis, int K>
+inline void next_event_phase(Lanes& L, bool from_b, int n, const Stack& l, bool substrate) {
+  if (from_b)
+    next_event_lanes<kPhase, kMis, true, K>(L, n, l, substrate);
+  else
+    next_event_lanes<kPhase, kMis, false, K>(L, n, l, substrate);
+}
+
+template <bool kMis, int K>
+inline void next_event_stack(Lanes& L, bool from_b, int n, const Stack& l, bool substrate) {
+  switch (l.phase) {
+    case SlabPhase::kSggxSurface:
+    case SlabPhase::kSggxFiber: next_event_phase<SlabPhase::kSggxSurface, kMis, K>(L, from_b, n, l, substrate); break;
+    case SlabPhase::kHenyeyGreenstein:
+      next_event_phase<SlabPhase::kHenyeyGreenstein, kMis, K>(L, from_b, n, l, substrate);
+      break;
+    case SlabPhase::kIsotropic: next_event_phase<SlabPhase::kIsotropic, kMis, K>(L, from_b, n, l, substrate); break;
+    case SlabPhase::kLambertSphere: break;  // (its phase function: the scalar pass)
+  }
+}
+
+// (Paths before the event in b if from_b, else in a.)
+MCREF_WAVE_STAGE void next_events(Lanes& L, bool from_b, int n, const Stack& l, bool mis, bool substrate) {
+  if (mis && l.layers == 1) next_event_stack<true, 1>(L, from_b, n, l, substrate);
+  else if (mis && l.layers == 2) next_event_stack<true, 2>(L, from_b, n, l, substrate);
+  else if (mis) next_event_stack<true, kMaxLayers>(L, from_b, n, l, substrate);
+  else if (l.layers == 1) next_event_stack<false, 1>(L, from_b, n, l, substrate);
+  else if (l.layers == 2) next_event_stack<false, 2>(L, from_b, n, l, substrate);
+  else next_event_stack<false, kMaxLayers>(L, from_b, n, l, substrate);
+}
+
 // The lane's photon (its lateral position where the layers vary laterally, else 0).
 Photon photon(const Paths& p, const Lateral& pos, bool lateral, int i) {
   Photon ph;
@@ -233,6 +355,13 @@ double leave_or_bounce(Paths& p, Streams& r, const Lateral& pos, bool lateral, d
   return roulette(p.wr[i], p.wg[i], p.wb[i], keep, r.uniform(i)) > 0 ? kGoesOn : kEnded;
 }
 
+// The stack's layer k takes S (with what the stages read of it).
+void set_sggx(Stack& l, int k, const sggx::Sggx& S) {
+  for (int e = 0; e < 9; ++e)
+    l.S[e][k] = S.S.m[e / 3][e % 3], l.L[e][k] = S.L.m[e / 3][e % 3], l.S_inv[e][k] = S.S_inv.m[e / 3][e % 3];
+  l.sqrt_det[k] = S.sqrt_det;
+}
+
 }  // namespace
 
 std::string wave_walk_unsupported(const SlabGeometry& g) {
@@ -257,7 +386,7 @@ std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi
                                                                : sggx::fiber_like(sl.alpha, sl.orientation);
     l.top[k] = medium.layers()[k].top, l.bottom[k] = medium.layers()[k].bottom;
     l.density[k] = sl.density, l.g[k] = sl.g;
-    for (int e = 0; e < 9; ++e) l.S[e][k] = S.S.m[e / 3][e % 3], l.L[e][k] = S.L.m[e / 3][e % 3];
+    set_sggx(l, k, S);
     l.ar[k] = sl.albedo.r, l.ag[k] = sl.albedo.g, l.ab[k] = sl.albedo.b;
     l.fr[k] = sl.f0.r, l.fg[k] = sl.f0.g, l.fb[k] = sl.f0.b;
   }
@@ -274,7 +403,7 @@ std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi
       if (M.s_varies) throw std::invalid_argument("the wave walk takes OpenVDB layers whose SGGX matrix is the same everywhere");
       l.density[k] = bounds.rho_max[k];
       if (M.one_s)
-        for (int e = 0; e < 9; ++e) l.S[e][k] = M.s.S.m[e / 3][e % 3], l.L[e][k] = M.s.L.m[e / 3][e % 3];
+        set_sggx(l, k, M.s);
       g.offset[k] = static_cast<double>(bounds.offset[k]);
       g.depth_offset[k] = static_cast<double>(bounds.depth_offset[k]);
       g.m[k] = M.lateral, g.inv_cell[k] = M.inv_cell_size;
@@ -319,7 +448,19 @@ std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi
   // path before the event and after it, with the weight before the roulette
   // (after it, times its survival probability), as walk() tallies them: whether
   // or not the roulette keeps the path. The lane's stream seeds the event's draws.
-  const bool next_event = s.estimator != SlabEstimator::kAnalog;
+  const bool next_event = s.estimator != SlabEstimator::kAnalog, mis = s.estimator == SlabEstimator::kNextEventMis;
+  // In a stack of homogeneous layers (but of Lambert spheres) the vector stage
+  // computes them (next_events, L->ne; its uniform directions drawn from the
+  // lanes' streams), and this pass adds them.
+  const bool vector_tallies = next_event && !grid && l.phase != SlabPhase::kLambertSphere;
+  const bool substrate = medium.has_substrate();
+  const auto tally_vector = [&](const Paths& p, int i) {
+    const NextEvents& ne = L->ne;
+    const int order = static_cast<int>(p.order[i]), first_class = static_cast<int>(p.first_class[i]);
+    if (ne.along_d[i] > 0) out.add({p.dx[i], p.dy[i], p.dz[i]}, order, first_class, p.weight(i) * st.keep[i] * ne.along_d[i], false);
+    if (mis && (ne.ur[i] > 0 || ne.ug[i] > 0 || ne.ub[i] > 0))
+      out.add({ne.ux[i], ne.uy[i], ne.uz[i]}, order, first_class, {ne.ur[i], ne.ug[i], ne.ub[i]}, false);
+  };
   const auto tally_next_event = [&](const Paths& in, const Paths& p, int i) {
     Rng lane(r.next(i));
     const Photon ph = photon(p, pos, g.lateral, i);
@@ -358,9 +499,13 @@ std::uint64_t wave_walk(const SlabMedium& medium, const WalkSettings& s, Vec3 wi
     const Paths& before = in_b ? L->b : L->a;  // (the scatter stage left them as they were)
     in_b = !in_b;
     Paths& p = in_b ? L->b : L->a;
+    if (vector_tallies) next_events(*L, !in_b, n, l, mis, substrate);
     if (next_event)
       for (int i = 0; i < n; ++i)
-        if (p.order[i] > before.order[i] && st.keep[i] > 0) tally_next_event(before, p, i);  // a phase event (a valid sample)
+        if (p.order[i] > before.order[i] && st.keep[i] > 0) {  // a phase event (a valid sample)
+          if (vector_tallies) tally_vector(p, i);
+          else tally_next_event(before, p, i);
+        }
     // Ended lanes take the next path, or the last lane (already handled: the
     // loop runs downward) when none is left.
     for (int i = n - 1; i >= 0; --i) {
