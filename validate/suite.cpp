@@ -23,6 +23,7 @@
 #include "validate/metrics.h"
 #include "validate/model_evaluation.h"
 #include "validate/report.h"
+#include "validate/suite_outputs.h"
 
 namespace fs = std::filesystem;
 
@@ -48,6 +49,7 @@ Suite load_suite_at_depth(const std::string& path, int depth) {
   }
   Suite s;
   s.file = path;
+  s.files = {path};
   TomlReader r(root, path, "");
   const toml::table* head = r.table("suite");
   if (!head) r.fail("suite", "is required ([suite] with name)");
@@ -61,6 +63,7 @@ Suite load_suite_at_depth(const std::string& path, int depth) {
   // Cases of included suites (paths relative to this file) come first.
   for (const std::string& inc : includes) {
     const Suite other = load_suite_at_depth((dir / inc).string(), depth + 1);
+    s.files.insert(s.files.end(), other.files.begin(), other.files.end());
     for (const Case& c : other.cases) {
       for (const Case& have : s.cases)
         if (have.name == c.name) throw ConfigError(path, "suite.include", "case \"" + c.name + "\" appears twice");
@@ -365,6 +368,7 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   // Validate every case's experiment and checks before simulating anything.
   const std::vector<Experiment> experiments = plan_suite(suite, o.threads);
+  check_on_root(*o.ranks, [&] { check_suite_outputs(suite, experiments, o.out_dir); });
   if (o.ranks->root()) fs::create_directories(fs::path(o.out_dir) / "tables");
   std::vector<CaseResult> results;
   int failures = 0;

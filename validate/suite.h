@@ -32,6 +32,7 @@ struct Case {
 
 struct Suite {
   std::string file, name, title;
+  std::vector<std::string> files;  // this suite's file and every suite it includes
   double significance = 1e-3;  // alpha for exact models
   std::vector<Case> cases;
 };

@@ -19,6 +19,23 @@ fs::path resolved(const std::string& p) {
   return ec ? fs::absolute(p).lexically_normal() : r;
 }
 
+// The path as named: its directory resolved, its last component kept (a link stays a link).
+fs::path resolved_parent(const std::string& p) {
+  const fs::path a = fs::absolute(p).lexically_normal();
+  return a.has_filename() ? resolved(a.parent_path().string()) / a.filename() : resolved(p);
+}
+
+// True if p lies strictly below dir (both absolute and normal).
+bool inside(const fs::path& p, const fs::path& dir) {
+  auto x = p.begin();
+  for (const fs::path& d : dir) {
+    if (d.empty()) continue;  // a trailing separator
+    if (x == p.end() || *x != d) return false;
+    ++x;
+  }
+  return x != p.end() && !x->empty();
+}
+
 void check_writable_parent(const std::string& path, const std::string& flag) {
   const fs::path parent = fs::absolute(path).parent_path();
   std::error_code ec;
@@ -26,6 +43,34 @@ void check_writable_parent(const std::string& path, const std::string& flag) {
     throw ConfigError(path, flag, "the output's directory " + parent.string() + " does not exist (mcref creates no directories for it)");
   if (access(parent.c_str(), W_OK | X_OK) != 0)
     throw ConfigError(path, flag, "the output's directory " + parent.string() + " is not writable");
+}
+
+// What an existing path is if the new file must not be renamed over it ("" if it may).
+std::string special_kind(const std::string& path) {
+  std::error_code ec;
+  switch (fs::symlink_status(path, ec).type()) {
+    case fs::file_type::fifo: return "a FIFO (named pipe)";
+    case fs::file_type::character: return "a character device";
+    case fs::file_type::block: return "a block device";
+    case fs::file_type::socket: return "a socket";
+    case fs::file_type::unknown: return "not a regular file";
+    default: return "";  // none, regular, symlink, directory (refused apart)
+  }
+}
+
+// <name>.tmp.<pid> within the name limit of the file system the output goes to
+// (asked of its nearest existing directory).
+void check_temp_name_fits(const std::string& path, const std::string& flag) {
+  const fs::path abs = fs::absolute(path).lexically_normal();
+  const std::string tmp = abs.filename().string() + ".tmp." + std::to_string(getpid());
+  fs::path dir = abs.parent_path();
+  std::error_code ec;
+  while (!fs::is_directory(dir, ec) && dir.has_relative_path()) dir = dir.parent_path();
+  const long max = pathconf(dir.c_str(), _PC_NAME_MAX);
+  if (max > 0 && tmp.size() > static_cast<std::size_t>(max))
+    throw ConfigError(path, flag, "the file name is too long: its temporary name " + tmp + " would have " +
+                                      std::to_string(tmp.size()) + " characters, more than the " + std::to_string(max) +
+                                      " the file system allows; choose a shorter name");
 }
 
 }  // namespace
@@ -39,14 +84,22 @@ bool same_file(const std::string& a, const std::string& b) {
   return resolved(a) == resolved(b);
 }
 
-void check_output_file(const std::string& path, const std::vector<std::string>& inputs, const std::string& flag) {
+void check_replaceable_file(const std::string& path, const std::vector<std::string>& inputs, const std::string& flag) {
   if (path.empty()) throw ConfigError("command line", flag, "an output path is required");
   for (const std::string& in : inputs)
     if (same_file(path, in)) throw ConfigError(path, flag, "is the input " + in + "; choose another output");
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw ConfigError(path, flag, "is a directory; give a file name");
+  const std::string kind = special_kind(path);
+  if (!kind.empty())
+    throw ConfigError(path, flag, "exists and is " + kind + ", not a regular file (writing would replace it with one); give another name");
   if (fs::exists(path, ec) && access(path.c_str(), W_OK) != 0 && access(fs::absolute(path).parent_path().c_str(), W_OK) != 0)
     throw ConfigError(path, flag, "exists and cannot be replaced");
+  check_temp_name_fits(path, flag);
+}
+
+void check_output_file(const std::string& path, const std::vector<std::string>& inputs, const std::string& flag) {
+  check_replaceable_file(path, inputs, flag);
   check_writable_parent(path, flag);
 }
 
@@ -61,6 +114,14 @@ void check_output_directory(const std::string& path, const std::vector<std::stri
   }
   for (const std::string& in : inputs)
     if (same_file(path, in)) throw ConfigError(path, flag, "is the input " + in + "; choose another output");
+}
+
+void check_inputs_outside(const std::string& dir, const std::vector<std::string>& inputs, const std::string& output) {
+  const fs::path d = resolved(dir);
+  for (const std::string& in : inputs)
+    if (inside(resolved(in), d) || inside(resolved_parent(in), d))
+      throw ConfigError(in, "", "is inside " + dir + ", where " + output +
+                                    " replaces and removes files; move the input or choose another output");
 }
 
 }  // namespace mcref

@@ -38,6 +38,8 @@ BrdfInterpolation::BrdfInterpolation(const Table& t, const std::string& file) {
         (names.size() == 4 || channel)))
     refuse("axes must be theta_i, phi_i, theta_o, phi[, channel]");
   if (t.axes[1].size() != 1) refuse("has " + std::to_string(t.axes[1].size()) + " incident azimuths; MERL holds isotropic BRDFs (one phi_i)");
+  if (t.axes[3].values.back() - t.axes[3].values.front() > kPi + 1e-9)
+    refuse("is anisotropic (phi over [0, 2 pi), from an anisotropic medium); MERL holds isotropic BRDFs (phi over [0, pi])");
   channels_ = channel ? static_cast<int>(t.axes[4].size()) : 1;
   if (channels_ != 1 && channels_ != 3) refuse("has " + std::to_string(channels_) + " channels (1 or 3 allowed)");
   ti_ = t.axes[0].values;

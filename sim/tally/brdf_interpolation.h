@@ -11,7 +11,9 @@
 //   theta_i: at least 2 points, the first <= 5 deg, the last >= 75 deg,
 //            consecutive gaps <= 15 deg;
 //   theta_o: at least 8 bins;  phi: at least 8 bins over [0, pi] (<= 22.5 deg);
-//   phi_i: one point (an isotropic table); channel: 1 (grey) or 3 (RGB).
+//   phi_i: one point and phi over [0, pi] (an isotropic table: an anisotropic
+//          one, phi over [0, 2 pi), would be folded and half of it lost);
+//   channel: 1 (grey) or 3 (RGB).
 #include <string>
 
 #include "sim/tally/table.h"

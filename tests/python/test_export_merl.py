@@ -117,3 +117,25 @@ def test_bad_arguments(cli, tmp_path):
                       (["--table", "brdf_albedo", "--format", "merl"], "not a brdf table")]:
         code, _, err = cli("export-brdf", str(h5), *args, "-o", str(tmp_path / "o.binary"))
         assert code == 2 and msg in err and len(err.strip().splitlines()) == 1, err
+
+
+def test_anisotropic_table_refused(cli, tmp_path):
+    """A table of an anisotropic slab (phi over [0, 2 pi)) would be folded into [0, pi],
+    half of it lost: refused in one line, exit 2, nothing written."""
+    cfg = {
+        "geometry": {"kind": "slab", "layer": [{"phase": "sggx_fiber", "alpha": 0.5, "orientation": [1, 0, 0],
+                                                "optical_thickness": 1.0, "albedo": 0.8}]},
+        "run": {"seed": 4, "batches": 2},
+        "measure": [{"quantity": "brdf", "theta_i_deg": [0, 15, 30, 45, 60, 75], "phi_i_deg": [0],
+                     "theta_o_bins": 8, "phi_bins": 16, "samples": 50}],
+    }
+    tables = mcref.simulate(cfg)
+    assert tables["brdf"].axis("phi").edges[-1] > 6.28  # the sample is anisotropic: phi is not folded
+    h5 = tmp_path / "aniso.h5"
+    mcref.write_tables(str(h5), tables)
+    out = tmp_path / "aniso.binary"
+    code, _, err = cli("export-brdf", str(h5), "--table", "brdf", "--format", "merl", "-o", str(out))
+    assert code == 2, err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and "anisotropic" in lines[0] and "MERL" in lines[0], err
+    assert not out.exists()

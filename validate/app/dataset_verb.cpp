@@ -70,7 +70,13 @@ int dataset(const std::vector<std::string>& raw, const std::string& command_line
   opt.quiet = a.quiet;
   opt.ranks = &Communicator::world();  // under mpirun: the entries spread over the ranks
   const DatasetConfig config = load_dataset(a.positional[0]);
-  check_on_root(*opt.ranks, [&] { check_output_file(a.output, with_inputs({a.positional[0], config.experiment_file}, config.inputs)); });
+  check_on_root(*opt.ranks, [&] {
+    const std::vector<std::string> inputs = with_inputs({a.positional[0], config.experiment_file}, config.inputs);
+    check_output_file(a.output, inputs);
+    // DATA.h5.parts/: its part files are replaced, and removed once assembled.
+    check_output_directory(a.output + ".parts", inputs);
+    check_inputs_outside(a.output + ".parts", inputs, "mcref dataset -o " + a.output);
+  });
   const DatasetRunSummary s = run_dataset(config, opt);
   if (!opt.ranks->root()) return 0;  // rank 0 reports for the job
   if (s.up_to_date) {

@@ -29,7 +29,8 @@ const char* kHelp =
     "phi) between the table's bin averages (at the theta_i points and the theta_o and\n"
     "phi bin centres), held constant beyond the outermost points. Density rule: theta_i\n"
     "from <= 5 deg to >= 75 deg in steps <= 15 deg, >= 8 theta_o bins, >= 8 phi bins\n"
-    "over [0, pi]; coarser tables are refused.\n";
+    "over [0, pi]; coarser tables are refused, and so are anisotropic tables (phi over\n"
+    "[0, 2 pi) or several phi_i: MERL is isotropic).\n";
 }  // namespace
 
 int export_brdf(const std::vector<std::string>& raw) {

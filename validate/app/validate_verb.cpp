@@ -64,7 +64,7 @@ int validate(const std::vector<std::string>& raw, const std::string& command_lin
   if (!a.cases.empty()) select_cases(suite, a.cases);
   SuiteOptions o;
   o.ranks = &Communicator::world();  // under mpirun: each case's batches spread over the ranks
-  check_on_root(*o.ranks, [&] { check_output_directory(a.output, {a.positional[0]}); });
+  check_on_root(*o.ranks, [&] { check_output_directory(a.output, suite.files); });
   o.out_dir = a.output;
   o.threads = a.threads;
   o.quiet = a.quiet;

@@ -1,7 +1,9 @@
 // sim/files/output_path.h: an output that resolves to an input is refused
 // (same path, "./", "..", symbolic and hard links), as are directories given
-// as files and missing parent directories.
+// as files, missing parent directories, FIFOs, names too long for their
+// temporary, and inputs inside a directory the run writes into.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -33,5 +35,46 @@ TEST(OutputPath, SameFileSeesThroughLinksAndDots) {
   EXPECT_THROW(check_output_directory(in, {}), ConfigError);  // a file, not a directory
   EXPECT_NO_THROW(check_output_directory((d / "new").string(), {in}));
   EXPECT_THROW(check_output_directory((d / "missing" / "new").string(), {in}), ConfigError);
+  fs::remove_all(d);
+}
+
+// check_inputs_outside: an input inside the directory (named there, through
+// "..", or a link from outside to a file there) is refused; a sibling whose
+// name only starts like the directory's, and the directory's own parent, are not.
+TEST(OutputPath, InputsInsideAWrittenDirectoryAreRefused) {
+  const fs::path d = fs::temp_directory_path() / ("mcref_test_output_inside_" + std::to_string(getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d / "out.h5.parts" / "sub");
+  const std::string part = (d / "out.h5.parts" / "entry-0.h5").string();
+  std::ofstream(part) << "x";
+  std::ofstream(d / "out.h5.parts2") << "x";
+  fs::create_symlink(part, d / "link.toml");
+  const std::string dir = (d / "out.h5.parts").string();
+  for (const fs::path& p : {fs::path(part), d / "out.h5.parts" / "sub" / ".." / "entry-0.h5", d / "link.toml",
+                            d / "out.h5.parts" / "missing.toml"})
+    EXPECT_THROW(check_inputs_outside(dir, {p.string()}, "mcref dataset -o out.h5"), ConfigError) << p;
+  for (const fs::path& p : {d / "out.h5.parts2", d / "x.toml", d / "out.h5.parts"})
+    EXPECT_NO_THROW(check_inputs_outside(dir, {p.string()}, "mcref dataset -o out.h5")) << p;
+  fs::remove_all(d);
+}
+
+// An existing output must be a regular file (or a link, which is replaced):
+// a FIFO is refused; so is a name whose temporary <name>.tmp.<pid> is too long.
+TEST(OutputPath, OnlyRegularFilesAndLinksMayBeReplaced) {
+  const fs::path d = fs::temp_directory_path() / ("mcref_test_output_special_" + std::to_string(getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  ASSERT_EQ(mkfifo((d / "fifo").c_str(), 0644), 0);
+  std::ofstream(d / "file") << "x";
+  fs::create_symlink(d / "fifo", d / "link");
+  EXPECT_THROW(check_output_file((d / "fifo").string(), {}), ConfigError);
+  EXPECT_THROW(check_replaceable_file((d / "fifo").string(), {}), ConfigError);
+  EXPECT_NO_THROW(check_output_file((d / "file").string(), {}));
+  EXPECT_NO_THROW(check_output_file((d / "link").string(), {}));
+  const long max = pathconf(d.c_str(), _PC_NAME_MAX);
+  if (max > 0 && max < 1000) {
+    EXPECT_NO_THROW(check_output_file((d / std::string(static_cast<std::size_t>(max) - 16, 'n')).string(), {}));
+    EXPECT_THROW(check_output_file((d / std::string(static_cast<std::size_t>(max) - 3, 'n')).string(), {}), ConfigError);
+  }
   fs::remove_all(d);
 }

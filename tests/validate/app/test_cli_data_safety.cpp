@@ -7,6 +7,8 @@
 #include <hdf5.h>
 
 #include <sys/mount.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -304,4 +306,136 @@ TEST_F(Cli, DiluteSpherePackingsAreRefusedUpFront) {
   std::string volumetric = spheres;
   volumetric.replace(volumetric.find("albedo"), 0, "placement = \"volumetric\"\n");
   EXPECT_EQ(mcref("simulate " + quote(write("v.toml", volumetric)) + " -o " + quote(path("v.h5")) + " --quiet").exit_code, 0);
+}
+
+// An existing output that is not a regular file (a FIFO; a device as root) is
+// refused before any work by every verb, and by validate and dataset for the
+// files they write under their outputs; it is left as it was. (Renaming the
+// new file over it would turn /dev/null into a regular file.) `timeout`: a
+// reader of a FIFO would wait for a writer forever.
+TEST_F(Cli, OutputsThatAreNotRegularFilesAreRefused) {
+  const std::string exp = write("x.toml", experiment());
+  write("s.toml", slab_experiment());
+  write("suite.toml", "[suite]\nname = \"s\"\n[[case]]\nname = \"c\"\nexperiment = \"x.toml\"\n");
+  write("ds.toml", "[dataset]\nexperiment = \"x.toml\"\n[[parameter]]\nkey = \"geometry.tau0\"\nvalues = [0.3]\n");
+  // Inputs each verb accepts: a dataset to merge, a BRDF table dense enough to export.
+  ASSERT_EQ(mcref("dataset " + quote(path("ds.toml")) + " -o " + quote(path("d.h5")) + " --quiet").exit_code, 0);
+  std::string brdf = slab_experiment();
+  brdf.replace(brdf.find("theta_i_deg = [0, 30, 60]"), 25, "theta_i_deg = [0, 15, 30, 45, 60, 75]");
+  ASSERT_EQ(mcref("simulate " + quote(write("b.toml", brdf)) + " -o " + quote(path("t.h5")) +
+                  " --quiet --set measure.0.samples=20 --set measure.0.theta_o_bins=8 --set measure.0.phi_bins=8").exit_code, 0);
+  const auto run = [&](const std::string& args) { return shell("timeout 60 " + quote(MCREF_BINARY) + " " + args + " --quiet"); };
+  std::vector<std::string> specials = {path("fifo")};
+  ASSERT_EQ(mkfifo(specials[0].c_str(), 0644), 0);
+  if (geteuid() == 0 && mknod(path("null").c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0) specials.push_back(path("null"));
+  for (const std::string& sp : specials) {
+    const std::string kind = sp == path("fifo") ? "FIFO" : "character device";
+    for (const std::string& verb : {"simulate " + quote(exp), "export-vdb " + quote(path("s.toml")),
+                                    "merge " + quote(path("d.h5")), "dataset " + quote(path("ds.toml")),
+                                    "export-brdf " + quote(path("t.h5")) + " --table brdf --format merl"}) {
+      const Result r = run(verb + " -o " + quote(sp));
+      EXPECT_EQ(r.exit_code, 2) << verb << ": " << r.err;
+      expect_one_line_error(r, {sp, kind, "not a regular file"});
+    }
+    // validate's results.json and a case's tables/<case>.h5.
+    for (const std::string& name : {"results.json", "tables/c.h5"}) {
+      fs::remove_all(path("v"));
+      fs::create_directories(path("v/tables"));
+      if (kind == "FIFO") ASSERT_EQ(mkfifo(path("v/" + name).c_str(), 0644), 0);
+      else ASSERT_EQ(mknod(path("v/" + name).c_str(), S_IFCHR | 0666, makedev(1, 3)), 0);
+      const Result r = run("validate " + quote(path("suite.toml")) + " -o " + quote(path("v")));
+      EXPECT_EQ(r.exit_code, 2) << name << ": " << r.err;
+      expect_one_line_error(r, {path("v/" + name), kind});
+      const fs::file_type type = fs::symlink_status(path("v/" + name)).type();
+      EXPECT_TRUE(type == fs::file_type::fifo || type == fs::file_type::character) << name << " was replaced";
+    }
+    const fs::file_type type = fs::symlink_status(sp).type();
+    EXPECT_TRUE(type == fs::file_type::fifo || type == fs::file_type::character) << sp << " was replaced";
+  }
+  for (const std::string& s : stray({"x.toml", "s.toml", "b.toml", "suite.toml", "ds.toml", "d.h5", "t.h5", "fifo", "null", "v"}))
+    ADD_FAILURE() << "left behind: " << s;
+}
+
+// A symbolic link given as an output is itself replaced by the new file; the
+// file it points to is left as it was (README, "What mcref guarantees").
+TEST_F(Cli, AnOutputThatIsALinkIsReplacedNotItsTarget) {
+  const std::string exp = write("x.toml", experiment());
+  const std::string target = write("target.h5", "keep");
+  fs::create_symlink(target, path("link.h5"));
+  ASSERT_EQ(mcref("simulate " + quote(exp) + " -o " + quote(path("link.h5")) + " --quiet").exit_code, 0);
+  EXPECT_EQ(fs::symlink_status(path("link.h5")).type(), fs::file_type::regular);
+  EXPECT_EQ(slurp(target), "keep");
+}
+
+// Inputs where validate or dataset write their files are refused before any
+// work, naming the input, and left as they were: a suite saved as
+// OUTDIR/results.json, an experiment or an included suite in OUTDIR/tables/,
+// a dataset's base experiment in DATA.h5.parts/ (it would be removed as a
+// damaged part).
+TEST_F(Cli, InputsWhereOutputsAreWrittenAreRefused) {
+  write("x.toml", experiment());
+  const std::string suite = "[suite]\nname = \"s\"\n[[case]]\nname = \"tp\"\nexperiment = \"../x.toml\"\n";
+  fs::create_directories(path("o3/tables"));
+  const std::string saved = write("o3/results.json", suite);
+  Result r = mcref("validate " + quote(saved) + " -o " + quote(path("o3")) + " --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  expect_one_line_error(r, {"results.json", "is the input"});
+  EXPECT_EQ(slurp(saved), suite);
+  fs::remove(saved);
+  const std::string inside = write("o3/tables/tp.h5", experiment());
+  write("s.toml", "[suite]\nname = \"s\"\n[[case]]\nname = \"tp\"\nexperiment = \"o3/tables/tp.h5\"\n");
+  r = mcref("validate " + quote(path("s.toml")) + " -o " + quote(path("o3")) + " --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  expect_one_line_error(r, {inside, "o3/tables"});
+  EXPECT_EQ(slurp(inside), experiment());
+  write("o3/tables/inc.toml", "[suite]\nname = \"i\"\n[[case]]\nname = \"inc\"\nexperiment = \"../../x.toml\"\n");
+  write("s.toml", "[suite]\nname = \"s\"\ninclude = [\"o3/tables/inc.toml\"]\n[[case]]\nname = \"a\"\nexperiment = \"x.toml\"\n");
+  r = mcref("validate " + quote(path("s.toml")) + " -o " + quote(path("o3")) + " --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  expect_one_line_error(r, {"inc.toml", "o3/tables"});
+  EXPECT_FALSE(fs::exists(path("o3/results.json")));
+  // dataset: the base experiment as z.h5.parts/entry-0.h5.
+  fs::create_directories(path("z.h5.parts"));
+  const std::string part = write("z.h5.parts/entry-0.h5", experiment());
+  write("ds.toml", "[dataset]\nexperiment = \"z.h5.parts/entry-0.h5\"\n[[parameter]]\nkey = \"geometry.tau0\"\nvalues = [0.3]\n");
+  r = mcref("dataset " + quote(path("ds.toml")) + " -o " + quote(path("z.h5")) + " --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  expect_one_line_error(r, {part, "z.h5.parts"});
+  EXPECT_EQ(slurp(part), experiment());
+  EXPECT_FALSE(fs::exists(path("z.h5")));
+}
+
+// What validate writes under OUTDIR is checked before any case is simulated:
+// tables/ must be a directory, results.json and tables/<case>.h5 must not be
+// directories. Any verb refuses an output whose temporary name
+// <output>.tmp.<pid> would not fit the file system's name limit.
+TEST_F(Cli, OutputsThatCouldOnlyFailAfterTheWorkAreRefusedFirst) {
+  const std::string exp = write("x.toml", experiment());
+  write("suite.toml", "[suite]\nname = \"s\"\n[[case]]\nname = \"c\"\nexperiment = \"x.toml\"\n");
+  const auto validate = [&] { return mcref("validate " + quote(path("suite.toml")) + " -o " + quote(path("v")) + " --quiet"); };
+  fs::create_directories(path("v"));
+  write("v/tables", "a file");
+  Result r = validate();
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  expect_one_line_error(r, {"v/tables", "not a directory"});
+  fs::remove_all(path("v"));  // each case from a fresh OUTDIR (the old code wrote some)
+  fs::create_directories(path("v/results.json"));
+  r = validate();
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  expect_one_line_error(r, {"results.json", "is a directory"});
+  EXPECT_FALSE(fs::exists(path("v/tables/c.h5"))) << "the case was simulated first";
+  fs::remove_all(path("v"));
+  fs::create_directories(path("v/tables/c.h5"));
+  r = validate();
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  expect_one_line_error(r, {"c.h5", "is a directory"});
+  EXPECT_FALSE(fs::exists(path("v/results.json")));
+  // A name of NAME_MAX - 2 characters fits, its temporary does not.
+  const long max = pathconf(dir_.c_str(), _PC_NAME_MAX);
+  if (max <= 0 || max > 1000) GTEST_SKIP() << "no name limit here";
+  const std::string name = path(std::string(static_cast<std::size_t>(max) - 5, 'n') + ".h5");
+  r = mcref("simulate " + quote(exp) + " -o " + quote(name) + " --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  expect_one_line_error(r, {"-o", "too long", ".tmp."});
+  EXPECT_FALSE(fs::exists(name));
 }
