@@ -81,6 +81,8 @@ Suite load_suite_at_depth(const std::string& path, int depth) {
     for (const Case& other : s.cases)
       if (other.name == k.name) c.fail("name", "\"" + k.name + "\" is used twice");
     if (k.name.find_first_of("/\\ ") != std::string::npos) c.fail("name", "must not contain '/', '\\' or spaces");
+    if (k.name.empty() || k.name.front() == '.')  // (it names tables/<name>.h5 and the plots)
+      c.fail("name", "\"" + k.name + "\" must be non-empty and not start with '.'");
     k.figure = c.any_string("figure", "");
     k.description = c.any_string("description", "");
     k.experiment_path = (dir / c.any_string("experiment")).string();

@@ -91,6 +91,9 @@ DatasetParameter read_parameter(const toml::table& t, const DatasetConfig& c, st
   if (p.key == "geometry.density_vdb")
     r.fail("key", "a dataset cannot vary geometry.density_vdb (the files' contents would not be part of its identity); "
                   "set it in the base experiment");
+  if (p.key == "run.seed")
+    r.fail("key", "a dataset sets every entry's run.seed itself, from [dataset] seed and the entry's index; "
+                  "vary [dataset] seed instead");
   const int given = (t.contains("values") ? 1 : 0) + (t.contains("choices") ? 1 : 0) + (t.contains("range") ? 1 : 0);
   const std::string dist = r.string("distribution", {"uniform", "log_uniform", "direction"}, std::string(""));
   if (given != 1 && dist != "direction")

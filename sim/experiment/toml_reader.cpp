@@ -1,9 +1,35 @@
 #include "sim/experiment/toml_reader.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 namespace mcref {
+
+std::string exact_text(double v) {
+  char buf[32];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
+}
+
+namespace {
+
+// What a value of the wrong type is, for messages: "the string \"a\"", "true".
+std::string given(const toml::node& n) {
+  if (const auto* s = n.as_string()) return "the string \"" + s->get() + "\"";
+  if (const auto* b = n.as_boolean()) return b->get() ? "true" : "false";
+  if (const auto* d = n.as_floating_point()) return exact_text(d->get());
+  if (const auto* i = n.as_integer()) return std::to_string(i->get());
+  if (n.is_array()) return "an array";
+  if (n.is_table()) return "a table";
+  return "a date or time";
+}
+
+}  // namespace
 
 bool Range::contains(double x) const {
   if (!std::isfinite(x)) return false;
@@ -15,9 +41,7 @@ bool Range::contains(double x) const {
 std::string Range::text() const {
   auto num = [](double v) {
     if (std::isinf(v)) return std::string(v > 0 ? "inf" : "-inf");
-    std::ostringstream s;
-    s << v;
-    return s.str();
+    return exact_text(v);
   };
   return std::string(lo_open ? "(" : "[") + num(lo) + ", " + num(hi) + (hi_open ? ")" : "]");
 }
@@ -43,12 +67,8 @@ double TomlReader::number(const std::string& key, Range range, std::optional<dou
     fail(key, "is required (a number in " + range.text() + ")");
   }
   std::optional<double> v = n->value<double>();
-  if (!v) fail(key, "must be a number in " + range.text());
-  if (!range.contains(*v)) {
-    std::ostringstream s;
-    s << "= " << *v << " is out of range; allowed " << range.text();
-    fail(key, s.str());
-  }
+  if (!v) fail(key, "must be a number in " + range.text() + ", not " + given(*n));
+  if (!range.contains(*v)) fail(key, "= " + exact_text(*v) + " is out of range; allowed " + range.text());
   return *v;
 }
 
@@ -66,7 +86,7 @@ std::int64_t TomlReader::integer(const std::string& key, std::int64_t lo, std::i
     std::optional<double> d = n->value_exact<double>();
     if (d && std::floor(*d) == *d && std::fabs(*d) < 9e18) v = static_cast<std::int64_t>(*d);
   }
-  if (!v) fail(key, "must be " + allowed);
+  if (!v) fail(key, "must be " + allowed + ", not " + given(*n));
   if (*v < lo || *v > hi) fail(key, "= " + std::to_string(*v) + " is out of range; allowed " + allowed);
   return *v;
 }
@@ -119,12 +139,8 @@ std::vector<double> TomlReader::numbers(const std::string& key, Range range,
   std::vector<double> out;
   auto take = [&](const toml::node& x) {
     std::optional<double> v = x.value<double>();
-    if (!v) fail(key, "must hold numbers in " + range.text());
-    if (!range.contains(*v)) {
-      std::ostringstream s;
-      s << "holds " << *v << ", out of range; allowed " << range.text();
-      fail(key, s.str());
-    }
+    if (!v) fail(key, "must hold numbers in " + range.text() + ", not " + given(x));
+    if (!range.contains(*v)) fail(key, "holds " + exact_text(*v) + ", out of range; allowed " + range.text());
     out.push_back(*v);
   };
   if (const toml::array* a = n->as_array()) {

@@ -116,7 +116,11 @@ TableFile read_table_file(const std::string& path) {
   h5::Handle root = h5::open_group(file, "/");
   TableFile f;
   try {
-    if (!h5::has_attr(root, "mcref_format") || h5::read_string_attr(root, "mcref_format") != kFormat)
+    const std::string format = h5::has_attr(root, "mcref_format") ? h5::read_string_attr(root, "mcref_format") : "";
+    if (format == "mcref-dataset")  // (a dataset's entries hold tables; its layout: README, "Reference datasets")
+      throw ConfigError(path, "mcref_format", "is an mcref dataset file, not a table file; read its entries' tables "
+                                              "with h5py (README, \"Reference datasets\")");
+    if (format != kFormat)
       throw ConfigError(path, "mcref_format", "not an mcref table file (root attribute mcref_format != \"mcref-tables\")");
     const std::int64_t version = h5::read_int_attr(root, "format_version");
     if (version != kFormatVersion)

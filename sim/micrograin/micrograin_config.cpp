@@ -52,9 +52,9 @@ void check_micrograin_directions(const Experiment& e) {
       for (double t : *angles)
         if (t > theta_max)
           throw ConfigError(e.file, "measure." + std::to_string(k) + "." + key,
-                            std::to_string(t * 180 / kPi) + " is too grazing: its rays would cross the tile more than " +
+                            exact_text(t * 180 / kPi) + " is too grazing: its rays would cross the tile more than " +
                                 std::to_string(static_cast<int>(kMaxTileCrossings)) + " times; at most " +
-                                std::to_string(theta_max * 180 / kPi) + " deg with this tile (a larger geometry.tile allows more)");
+                                exact_text(theta_max * 180 / kPi) + " deg with this tile (a larger geometry.tile allows more)");
   }
 }
 

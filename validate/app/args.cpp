@@ -16,8 +16,13 @@ long long parse_integer(const std::string& flag, const std::string& v, long long
   return n;
 }
 
+void given_once(std::set<std::string>& seen, const std::string& name, const std::string& flag) {
+  if (!seen.insert(name).second) throw ConfigError("command line", flag, "is given twice; give it once");
+}
+
 Args parse_args(const std::vector<std::string>& args, const std::string& verb, bool allow_set_and_seed) {
   Args a;
+  std::set<std::string> seen;
   auto value = [&](std::size_t& i) -> const std::string& {
     if (i + 1 >= args.size()) throw ConfigError("command line", args[i], "needs a value");
     return args[++i];
@@ -29,10 +34,10 @@ Args parse_args(const std::vector<std::string>& args, const std::string& verb, b
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& s = args[i];
     if (s == "--help" || s == "-h") a.help = true;
-    else if (s == "-o" || s == "--output") a.output = value(i);
+    else if (s == "-o" || s == "--output") given_once(seen, "-o", s), a.output = value(i);
     else if (s == "--quiet" || s == "-q") a.quiet = true;
-    else if (s == "--threads") a.threads = static_cast<int>(number(i, 1, 1024));
-    else if (allow_set_and_seed && s == "--seed") a.seed = number(i, 0, 9223372036854775807LL);
+    else if (s == "--threads") given_once(seen, s, s), a.threads = static_cast<int>(number(i, 1, 1024));
+    else if (allow_set_and_seed && s == "--seed") given_once(seen, s, s), a.seed = number(i, 0, 9223372036854775807LL);
     else if (allow_set_and_seed && s == "--set") a.sets.push_back(value(i));
     else if (verb == "validate" && s == "--force") a.force = true;
     else if (verb == "validate" && s == "--case") a.cases.push_back(value(i));

@@ -38,6 +38,7 @@ const char* kHelp =
 int dataset(const std::vector<std::string>& raw, const std::string& command_line) {
   DatasetRunOptions opt;
   std::vector<std::string> rest;
+  std::set<std::string> seen;
   for (std::size_t i = 0; i < raw.size(); ++i) {
     if (raw[i] == "--lean") {
       opt.lean = true;
@@ -49,6 +50,7 @@ int dataset(const std::vector<std::string>& raw, const std::string& command_line
     }
     if (i + 1 >= raw.size()) throw ConfigError("command line", raw[i], "needs a value");
     const std::string flag = raw[i], v = raw[++i];
+    given_once(seen, flag, flag);
     if (flag == "--stop-after") {
       opt.stop_after = parse_integer(flag, v, 0, 1LL << 40);
       continue;

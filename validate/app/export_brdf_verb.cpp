@@ -36,9 +36,11 @@ const char* kHelp =
 int export_brdf(const std::vector<std::string>& raw) {
   std::vector<std::string> rest;
   std::string table, format;
+  std::set<std::string> seen;
   for (std::size_t i = 0; i < raw.size(); ++i) {
     if (raw[i] == "--table" || raw[i] == "--format") {
       if (i + 1 >= raw.size()) throw ConfigError("command line", raw[i], "needs a value");
+      given_once(seen, raw[i], raw[i]);
       (raw[i] == "--table" ? table : format) = raw[i + 1];
       ++i;
     } else {

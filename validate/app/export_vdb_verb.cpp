@@ -48,6 +48,7 @@ int export_vdb(const std::vector<std::string>& raw) {
       continue;
     }
     if (i + 1 >= raw.size()) throw ConfigError("command line", "--voxel-size", "needs a value");
+    if (voxel_size != 0) throw ConfigError("command line", "--voxel-size", "is given twice; give it once");
     const std::string& v = raw[++i];
     char* end = nullptr;
     voxel_size = std::strtod(v.c_str(), &end);

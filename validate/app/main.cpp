@@ -43,6 +43,24 @@ int fail(int code, const char* what) {
   return code;
 }
 
+// The exit code, or 1 if what was printed on stdout could not all be written
+// (a full disk, a closed pipe): `mcref info > /dev/full` must not succeed.
+int checked_stdout(int code) {
+  if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return code;
+  return code ? code : fail(1, "could not write to standard output");
+}
+
+int run(const std::string& verb, const std::vector<std::string>& args, const std::string& command_line) {
+  if (verb == "simulate") return mcref::cli::simulate(args, command_line);
+  if (verb == "validate") return mcref::cli::validate(args, command_line);
+  if (verb == "info") return mcref::cli::info(args);
+  if (verb == "export-vdb") return mcref::cli::export_vdb(args);
+  if (verb == "export-brdf") return mcref::cli::export_brdf(args);
+  if (verb == "dataset") return mcref::cli::dataset(args, command_line);
+  if (verb == "merge") return mcref::cli::merge(args);
+  return fail(2, ("unknown verb '" + verb + "' (allowed: simulate, validate, info, export-vdb, export-brdf, dataset, merge)").c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -53,25 +71,18 @@ int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::fputs(kUsage, args.empty() ? stderr : stdout);
-    return args.empty() ? 2 : 0;
+    return args.empty() ? 2 : checked_stdout(0);
   }
   if (args[0] == "--version") {
     std::printf("mcref %s (commit %s)\n", mcref::mcref_version().c_str(), mcref::mcref_git_commit().c_str());
-    return 0;
+    return checked_stdout(0);
   }
   std::string command_line;
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
   const std::string verb = args[0];
   args.erase(args.begin());
   try {
-    if (verb == "simulate") return mcref::cli::simulate(args, command_line);
-    if (verb == "validate") return mcref::cli::validate(args, command_line);
-    if (verb == "info") return mcref::cli::info(args);
-    if (verb == "export-vdb") return mcref::cli::export_vdb(args);
-    if (verb == "export-brdf") return mcref::cli::export_brdf(args);
-    if (verb == "dataset") return mcref::cli::dataset(args, command_line);
-    if (verb == "merge") return mcref::cli::merge(args);
-    return fail(2, ("unknown verb '" + verb + "' (allowed: simulate, validate, info, export-vdb, export-brdf, dataset, merge)").c_str());
+    return checked_stdout(run(verb, args, command_line));
   } catch (const mcref::ConfigError& e) {
     return fail(2, e.what());
   } catch (const std::exception& e) {

@@ -1,6 +1,7 @@
 #pragma once
 // The verbs of the mcref command. Each returns the process exit code and
 // throws ConfigError for bad input (printed by main as one line).
+#include <set>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,9 @@ struct Args {
 };
 // An integer command-line value in [lo, hi] (ConfigError naming the flag otherwise).
 long long parse_integer(const std::string& flag, const std::string& value, long long lo, long long hi);
+// ConfigError if the single-valued option `name` was seen before (each
+// parser keeps its `seen`): a second -o or --threads is refused, not taken.
+void given_once(std::set<std::string>& seen, const std::string& name, const std::string& flag);
 Args parse_args(const std::vector<std::string>& args, const std::string& verb, bool allow_set_and_seed);
 // The files a run reads (`files`, then `more`: an experiment's own inputs), none of which an output may overwrite.
 std::vector<std::string> with_inputs(std::vector<std::string> files, const std::vector<InputFile>& more);

@@ -304,3 +304,10 @@ depth_voxels = 2
   const std::string m = error_of(dataset_with("key = \"geometry.density_vdb\"\nchoices = [\"d.vdb\", \"e.vdb\"]", ""));
   EXPECT_NE(m.find("parameter.0.key': a dataset cannot vary geometry.density_vdb"), std::string::npos) << m;
 }
+
+// run.seed is the dataset's to set (from its seed and the entry index): a
+// parameter on it would be recorded in the entries' assignments and then overridden.
+TEST_F(DatasetConfigTest, RunSeedIsNotAParameter) {
+  const std::string m = error_of(dataset_with("key = \"run.seed\"\nvalues = [1, 2]", ""));
+  EXPECT_NE(m.find("parameter.0.key': a dataset sets every entry's run.seed itself"), std::string::npos) << m;
+}

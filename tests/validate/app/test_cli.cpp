@@ -99,6 +99,10 @@ TEST_F(Cli, InfoRejectsFilesThatAreNotMcrefTables) {
   expect_one_line_error(mcref("info " + quote(path("truncated.h5"))), {"truncated.h5"});
   expect_one_line_error(mcref("info " + quote(path("missing.h5"))), {"missing.h5"});
   expect_one_line_error(mcref("info " + quote(dir_.string())), {dir_.string()});
+  // A dataset file: said to be one.
+  write("ds.toml", "[dataset]\nexperiment = \"good.toml\"\n[[parameter]]\nkey = \"geometry.tau0\"\nvalues = [0.5]\n");
+  ASSERT_EQ(mcref("dataset " + quote(path("ds.toml")) + " -o " + quote(path("ds.h5")) + " --quiet").exit_code, 0);
+  expect_one_line_error(mcref("info " + quote(path("ds.h5"))), {"ds.h5", "is an mcref dataset file, not a table file"});
 }
 
 TEST_F(Cli, UnknownVerbAndUnknownOptionAreRejected) {
@@ -240,4 +244,44 @@ TEST_F(Cli, ValidateReusesTablesOnlyWithTheSameSimFingerprint) {
   EXPECT_TRUE(validate());
   write("x.toml", experiment("tau0 = 0.4\nbeta = 0.8\n"));
   EXPECT_FALSE(validate()) << "another configuration: simulated again";
+}
+
+// Messages show the value as given: a number just past a bound in full, not
+// rounded into the range; a value of the wrong type with what it is.
+TEST_F(Cli, ErrorsShowTheValueAsGiven) {
+  expect_rejected(experiment("tau0 = 0.5\nbeta = 100.0000001\n"), {"bad.toml", "geometry.beta", "100.0000001", "(0, 100]"});
+  expect_rejected(experiment("tau0 = 0.5\nbeta = true\n"), {"bad.toml", "geometry.beta", "not true"});
+  expect_rejected(experiment("tau0 = 0.5\nbeta = 0.8\n", "", "quantity = \"tau_plus\"\ntheta_i_deg = [30]\nsamples = 2.5\n"),
+                  {"bad.toml", "measure.0.samples", "not 2.5"});
+  expect_rejected(experiment("tau0 = 0.5\nbeta = 0.8\n", "", "quantity = \"tau_plus\"\ntheta_i_deg = [30, \"a\"]\nsamples = 100\n"),
+                  {"bad.toml", "measure.0.theta_i_deg", "not the string \"a\""});
+}
+
+// A single-valued option given twice is refused, not silently taken from the last.
+TEST_F(Cli, SingleValuedOptionsGivenTwiceAreRefused) {
+  const std::string exp = write("good.toml", experiment());
+  const std::string out = quote(path("a.h5")), other = quote(path("b.h5"));
+  for (const std::string& twice : {"-o " + out + " -o " + other, "-o " + out + " --output " + other,
+                                   "-o " + out + " --threads 1 --threads 2", "-o " + out + " --seed 1 --seed 2"}) {
+    const Result r = mcref("simulate " + quote(exp) + " " + twice + " --quiet");
+    EXPECT_EQ(r.exit_code, 2) << twice;
+    EXPECT_NE(r.err.find("is given twice"), std::string::npos) << r.err;
+  }
+  EXPECT_TRUE(stray({"good.toml"}).empty());
+}
+
+// What a verb prints on stdout must be written: a full device is an error.
+TEST_F(Cli, StdoutThatCannotBeWrittenIsAnError) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  const std::string exp = write("good.toml", experiment());
+  const std::string out = path("good.h5");
+  ASSERT_EQ(mcref("simulate " + quote(exp) + " -o " + quote(out) + " --quiet").exit_code, 0);
+  const auto to_full = [&](const std::string& args) {  // (in a subshell: the fixture redirects stdout after it)
+    return shell("(" + quote(MCREF_BINARY) + " " + args + " > /dev/full)");
+  };
+  const Result info = to_full("info " + quote(out));
+  EXPECT_EQ(info.exit_code, 1);
+  EXPECT_NE(info.err.find("standard output"), std::string::npos) << info.err;
+  EXPECT_EQ(to_full("--version").exit_code, 1);
+  EXPECT_EQ(shell("(" + quote(MCREF_BINARY) + " info " + quote(out) + " > /dev/null)").exit_code, 0);  // (written: 0)
 }

@@ -122,3 +122,17 @@ TEST_F(Cli, HugeDatasetsPlanTheirEntriesLazily) {
   expect_one_line_error(bad, {"bad.toml: entry", "geometry.tau0"});
   EXPECT_FALSE(fs::exists(path("b.h5.parts")));
 }
+
+// A case's name names its table file and plots (tables/<name>.h5): an empty
+// name, "." or ".." (which wrote tables/.h5, tables/..h5) are refused up front.
+TEST_F(Cli, CaseNamesThatMakeNoFileNameAreRefused) {
+  write("x.toml", experiment());
+  for (const std::string name : {"", ".", "..", ".hidden"}) {
+    write("s.toml", "[suite]\nname = \"s\"\n\n[[case]]\nname = \"" + name + "\"\nexperiment = \"x.toml\"\n");
+    const Result r = mcref("validate " + quote(path("s.toml")) + " -o " + quote(path("out")) + " --quiet");
+    EXPECT_EQ(r.exit_code, 2) << "name \"" << name << "\": " << r.err;
+    expect_one_line_error(r, {"s.toml", "case.0.name", "must be non-empty and not start with '.'"});
+    EXPECT_FALSE(fs::exists(path("out"))) << "name \"" << name << "\"";
+    fs::remove_all(path("out"));
+  }
+}
