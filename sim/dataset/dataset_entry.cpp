@@ -8,6 +8,7 @@
 
 #include "models/core/rng.h"
 #include "sim/experiment/config_error.h"
+#include "sim/experiment/toml_reader.h"
 
 namespace mcref {
 
@@ -76,14 +77,7 @@ toml::array* find_array(toml::table& root, const std::string& path) {
 }
 
 // The shortest of %.15g, %.16g, %.17g that reads back as x.
-std::string format_double(double x) {
-  char buf[40];
-  for (int digits = 15; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-    if (std::strtod(buf, nullptr) == x) break;
-  }
-  return buf;
-}
+std::string format_double(double x) { return exact_text(x, 15); }
 
 // A value as --set text: numbers exact and short, anything else as TOML.
 std::string value_text(const toml::node& v) {

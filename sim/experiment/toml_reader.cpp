@@ -7,9 +7,9 @@
 
 namespace mcref {
 
-std::string exact_text(double v) {
+std::string exact_text(double v, int min_digits) {
   char buf[32];
-  for (int digits = 6; digits <= 17; ++digits) {
+  for (int digits = min_digits; digits <= 17; ++digits) {
     std::snprintf(buf, sizeof buf, "%.*g", digits, v);
     if (std::strtod(buf, nullptr) == v) break;
   }

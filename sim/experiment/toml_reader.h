@@ -14,9 +14,10 @@
 
 namespace mcref {
 
-// A number as text with as many digits as it takes to read back the same
-// double (messages: 100000.0001 is not shown as 100000 beside (4, 100000]).
-std::string exact_text(double v);
+// A number as text with as many digits (at least min_digits) as it takes to
+// read back the same double (messages: 100000.0001 is not shown as 100000
+// beside (4, 100000]).
+std::string exact_text(double v, int min_digits = 6);
 
 struct Range {
   double lo, hi;
