@@ -42,13 +42,14 @@ int export_vdb(const std::vector<std::string>& raw) {
   // --voxel-size is export-vdb's own option; the rest goes to the shared parser.
   std::vector<std::string> rest;
   double voxel_size = 0;
+  std::set<std::string> seen;
   for (std::size_t i = 0; i < raw.size(); ++i) {
     if (raw[i] != "--voxel-size") {
       rest.push_back(raw[i]);
       continue;
     }
     if (i + 1 >= raw.size()) throw ConfigError("command line", "--voxel-size", "needs a value");
-    if (voxel_size != 0) throw ConfigError("command line", "--voxel-size", "is given twice; give it once");
+    given_once(seen, "--voxel-size", "--voxel-size");
     const std::string& v = raw[++i];
     char* end = nullptr;
     voxel_size = std::strtod(v.c_str(), &end);
