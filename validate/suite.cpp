@@ -339,11 +339,19 @@ std::string accuracy_warning(const std::string& label, const std::vector<CheckRe
 // their measures (empty_tables), so nothing is simulated first.
 std::vector<Experiment> plan_suite(const Suite& suite, int threads) {
   std::vector<Experiment> experiments;
-  for (const Case& c : suite.cases) experiments.push_back(load_experiment(c.experiment_path, c.sets));
+  for (const Case& c : suite.cases) {
+    // The experiment's own errors name its file and key; which case is given too
+    // (cases may share an experiment, with other `set`s).
+    try {
+      experiments.push_back(load_experiment(c.experiment_path, c.sets));
+      check_memory(experiments.back(), threads);
+    } catch (const ConfigError& e) {
+      throw ConfigError(c.file, c.key, "case \"" + c.name + "\": " + e.what());
+    }
+  }
   for (std::size_t k = 0; k < suite.cases.size(); ++k) {
     const Case& c = suite.cases[k];
     const Experiment& ex = experiments[k];
-    check_memory(ex, threads);
     const std::vector<Table> tables = table_outline(ex);
     for (std::size_t j = 0; j < c.checks.size(); ++j) {
       const Check& chk = c.checks[j];

@@ -95,15 +95,33 @@ struct Drawn {
   std::vector<double> columns;
 };
 
-Drawn draw(const DatasetParameter& p, std::size_t grid_coord, Rng& rng) {
+// Value k of a grid or of choices.
+Drawn pick(const DatasetParameter& p, std::size_t k) {
   Drawn d;
-  using Mode = DatasetParameter::Mode;
-  if (p.mode == Mode::kGrid || p.mode == Mode::kChoice) {
-    const std::size_t k = p.mode == Mode::kGrid ? grid_coord : static_cast<std::size_t>(rng.below(p.values.size()));
-    d.holder.push_back(*p.values.get(k));
-    d.columns = p.numeric.empty() ? std::vector<double>{static_cast<double>(k)} : p.numeric[k];
-    return d;
+  d.holder.push_back(*p.values.get(k));
+  d.columns = p.numeric.empty() ? std::vector<double>{static_cast<double>(k)} : p.numeric[k];
+  return d;
+}
+
+// Numbers drawn: one, or an array.
+Drawn numbers(std::vector<double> columns) {
+  Drawn d;
+  d.columns = std::move(columns);
+  if (d.columns.size() == 1) {
+    d.holder.push_back(d.columns[0]);
+  } else {
+    toml::array a;
+    for (double x : d.columns) a.push_back(x);
+    d.holder.push_back(a);
   }
+  return d;
+}
+
+Drawn draw(const DatasetParameter& p, std::size_t grid_coord, Rng& rng) {
+  using Mode = DatasetParameter::Mode;
+  if (p.mode == Mode::kGrid) return pick(p, grid_coord);
+  if (p.mode == Mode::kChoice) return pick(p, static_cast<std::size_t>(rng.below(p.values.size())));
+  Drawn d;
   if (p.mode == Mode::kDirection) {
     const double z = rng.uniform(), phi = 2 * kPi * rng.uniform();
     const double s = std::sqrt(std::fmax(0.0, 1 - z * z));
@@ -116,24 +134,12 @@ Drawn draw(const DatasetParameter& p, std::size_t grid_coord, Rng& rng) {
                               : std::exp(std::log(p.lo) + (std::log(p.hi) - std::log(p.lo)) * u));
     }
   }
-  if (d.columns.size() == 1) {
-    d.holder.push_back(d.columns[0]);
-  } else {
-    toml::array a;
-    for (double x : d.columns) a.push_back(x);
-    d.holder.push_back(a);
-  }
-  return d;
+  return numbers(std::move(d.columns));
 }
 
-}  // namespace
-
-EntryPlan plan_entry(const DatasetConfig& c, std::int64_t index) {
-  EntryPlan plan;
-  plan.index = index;
-  plan.seed = stream_seed({c.seed, kEntryTag, static_cast<std::uint64_t>(index)}) >> 1;
-  plan.experiment = c.base;
-  // Grid coordinates, last grid parameter fastest.
+// The entry's values before they are applied: grid coordinates from the index
+// (last grid parameter fastest), sampled ones from their streams.
+std::vector<Drawn> draw_entry(const DatasetConfig& c, std::int64_t index) {
   std::vector<std::size_t> coord(c.parameters.size(), 0);
   std::int64_t g = index / c.per_point;
   for (std::size_t k = c.parameters.size(); k-- > 0;) {
@@ -147,6 +153,15 @@ EntryPlan plan_entry(const DatasetConfig& c, std::int64_t index) {
     Rng rng(stream_seed({c.seed, kParamTag, static_cast<std::uint64_t>(index), k}));
     drawn.push_back(draw(c.parameters[k], coord[k], rng));
   }
+  return drawn;
+}
+
+// The base experiment with `drawn` applied.
+EntryPlan apply(const DatasetConfig& c, std::int64_t index, const std::vector<Drawn>& drawn) {
+  EntryPlan plan;
+  plan.index = index;
+  plan.seed = stream_seed({c.seed, kEntryTag, static_cast<std::uint64_t>(index)}) >> 1;
+  plan.experiment = c.base;
   // Counts first: they decide which array elements exist.
   std::vector<std::pair<std::string, std::size_t>> counts;
   for (std::size_t k = 0; k < c.parameters.size(); ++k) {
@@ -183,6 +198,10 @@ EntryPlan plan_entry(const DatasetConfig& c, std::int64_t index) {
   return plan;
 }
 
+}  // namespace
+
+EntryPlan plan_entry(const DatasetConfig& c, std::int64_t index) { return apply(c, index, draw_entry(c, index)); }
+
 Experiment entry_experiment(const DatasetConfig& c, const EntryPlan& plan) {
   std::ostringstream text;
   text << plan.experiment;
@@ -201,6 +220,41 @@ Experiment entry_experiment(const DatasetConfig& c, const EntryPlan& plan) {
                                         "' changed after the dataset was read (" + c.inputs[k].digest + ", now " +
                                         ex.inputs[k].digest + "); rerun with the file as it was, or start a new output");
   return ex;
+}
+
+void check_parameter_values(const DatasetConfig& c) {
+  using Mode = DatasetParameter::Mode;
+  // Entry 0's values, with every count at its largest so that every parameter applies.
+  std::vector<Drawn> others = draw_entry(c, 0);
+  for (std::size_t k = 0; k < c.parameters.size(); ++k) {
+    const DatasetParameter& p = c.parameters[k];
+    if (!p.is_count()) continue;
+    std::size_t widest = 0;
+    for (std::size_t i = 0; i < p.values.size(); ++i)
+      if (*p.values.get(i)->value<std::int64_t>() > *p.values.get(widest)->value<std::int64_t>()) widest = i;
+    others[k] = pick(p, widest);
+  }
+  for (std::size_t k = 0; k < c.parameters.size(); ++k) {
+    const DatasetParameter& p = c.parameters[k];
+    std::vector<std::pair<std::string, Drawn>> probes;  // what the value is, the value
+    if (p.mode == Mode::kGrid || p.mode == Mode::kChoice)
+      for (std::size_t i = 0; i < p.values.size(); ++i) probes.emplace_back(p.mode == Mode::kGrid ? "values" : "choices", pick(p, i));
+    if (p.mode == Mode::kUniform || p.mode == Mode::kLogUniform) {
+      probes.emplace_back("the lower end of range", numbers(std::vector<double>(p.size, p.lo)));
+      probes.emplace_back("the upper end of range", numbers(std::vector<double>(p.size, p.hi)));
+    }
+    for (const auto& [what, value] : probes) {
+      std::vector<Drawn> drawn = others;
+      drawn[k] = value;
+      std::ostringstream text;
+      text << apply(c, 0, drawn).experiment;
+      try {
+        parse_experiment(text.str(), c.experiment_file);
+      } catch (const ConfigError& e) {
+        throw ConfigError(c.file, p.key, value_text(*value.holder.get(0)) + " (" + what + ") makes an invalid experiment, the other parameters as in entry 0: " + e.what());
+      }
+    }
+  }
 }
 
 }  // namespace mcref

@@ -31,4 +31,11 @@ EntryPlan plan_entry(const DatasetConfig& config, std::int64_t index);
 // dataset file, the entry, its assignments and the experiment key.
 Experiment entry_experiment(const DatasetConfig& config, const EntryPlan& plan);
 
+// Checks every value the parameters can take, whichever entries a run computes:
+// each grid value and choice, and both ends of each sampled range, applied to
+// entry 0 with every count at its largest (so that every parameter applies). A
+// bad one is a ConfigError naming the dataset file, the parameter's key and the
+// value. Values bad only in combination are found where an entry is planned.
+void check_parameter_values(const DatasetConfig& config);
+
 }  // namespace mcref

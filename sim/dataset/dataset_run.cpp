@@ -45,9 +45,12 @@ std::vector<Table> select_tables(const DatasetConfig& c, std::vector<Table> tabl
 }
 
 // A finished part of this dataset holding `index`, or false if absent or
-// damaged (then it is recomputed). A part of another dataset is an error.
+// damaged (then it is recomputed). A part of another dataset is an error, and
+// so is anything there but a file (a FIFO would block the read forever).
 bool usable_part(const std::string& path, const DatasetHeader& expect, std::int64_t index, const std::string& dir) {
   if (!fs::exists(path)) return false;
+  if (!fs::is_regular_file(path))
+    throw ConfigError(path, "", "is not a regular file, and a part of the dataset must be one; remove it");
   std::unique_ptr<DatasetReader> r;
   try {
     r = std::make_unique<DatasetReader>(path);
@@ -122,16 +125,17 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
     return s;
   }
   const std::string dir = o.output + ".parts";
-  // Rank 0 alone scans the parts in index order (it removes damaged ones) up
-  // to the entries this run computes (all, or the first --stop-after ones),
-  // and validates each of those before anything is simulated or written; the
-  // other ranks learn whether that failed.
+  // Rank 0 alone checks every value of the parameters, scans the parts in index
+  // order (it removes damaged ones) up to the entries this run computes (all,
+  // or the first --stop-after ones), and validates each of those before
+  // anything is simulated or written; the other ranks learn whether that failed.
   std::vector<std::int64_t> pending;
   bool more = false;  // pending entries beyond --stop-after
   std::vector<bool> finished;  // of this shard's entries, k < s.entries (on rank 0)
   std::string error;
   if (ranks.root()) {
     try {
+      check_parameter_values(c);
       for (std::int64_t k = 0; k < s.entries && !more; ++k) {
         finished.push_back(usable_part(part_path(dir, index(k)), part_header, index(k), dir));
         if (finished.back()) ++s.reused;

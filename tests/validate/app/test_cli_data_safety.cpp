@@ -337,22 +337,36 @@ TEST_F(Cli, OutputsThatAreNotRegularFilesAreRefused) {
       EXPECT_EQ(r.exit_code, 2) << verb << ": " << r.err;
       expect_one_line_error(r, {sp, kind, "not a regular file"});
     }
+    const auto make_special = [&](const std::string& at) {
+      return kind == "FIFO" ? mkfifo(at.c_str(), 0644) : mknod(at.c_str(), S_IFCHR | 0666, makedev(1, 3));
+    };
+    const auto is_special = [](const std::string& at) {
+      const fs::file_type type = fs::symlink_status(at).type();
+      return type == fs::file_type::fifo || type == fs::file_type::character;
+    };
     // validate's results.json and a case's tables/<case>.h5.
     for (const std::string& name : {"results.json", "tables/c.h5"}) {
       fs::remove_all(path("v"));
       fs::create_directories(path("v/tables"));
-      if (kind == "FIFO") ASSERT_EQ(mkfifo(path("v/" + name).c_str(), 0644), 0);
-      else ASSERT_EQ(mknod(path("v/" + name).c_str(), S_IFCHR | 0666, makedev(1, 3)), 0);
+      ASSERT_EQ(make_special(path("v/" + name)), 0);
       const Result r = run("validate " + quote(path("suite.toml")) + " -o " + quote(path("v")));
       EXPECT_EQ(r.exit_code, 2) << name << ": " << r.err;
       expect_one_line_error(r, {path("v/" + name), kind});
-      const fs::file_type type = fs::symlink_status(path("v/" + name)).type();
-      EXPECT_TRUE(type == fs::file_type::fifo || type == fs::file_type::character) << name << " was replaced";
+      EXPECT_TRUE(is_special(path("v/" + name))) << name << " was replaced";
     }
-    const fs::file_type type = fs::symlink_status(sp).type();
-    EXPECT_TRUE(type == fs::file_type::fifo || type == fs::file_type::character) << sp << " was replaced";
+    // A dataset's part, DATA.h5.parts/entry-0.h5, is read to resume: a FIFO
+    // there blocked the run, and a device was taken for a damaged part and removed.
+    fs::remove_all(path("p.h5.parts"));
+    fs::create_directories(path("p.h5.parts"));
+    ASSERT_EQ(make_special(path("p.h5.parts/entry-0.h5")), 0);
+    const Result part = run("dataset " + quote(path("ds.toml")) + " -o " + quote(path("p.h5")));
+    EXPECT_EQ(part.exit_code, 2) << part.err;
+    expect_one_line_error(part, {path("p.h5.parts/entry-0.h5"), "not a regular file", "remove it"});
+    EXPECT_TRUE(is_special(path("p.h5.parts/entry-0.h5"))) << "the part was replaced";
+    EXPECT_FALSE(fs::exists(path("p.h5")));
+    EXPECT_TRUE(is_special(sp)) << sp << " was replaced";
   }
-  for (const std::string& s : stray({"x.toml", "s.toml", "b.toml", "suite.toml", "ds.toml", "d.h5", "t.h5", "fifo", "null", "v"}))
+  for (const std::string& s : stray({"x.toml", "s.toml", "b.toml", "suite.toml", "ds.toml", "d.h5", "t.h5", "fifo", "null", "v", "p.h5.parts"}))
     ADD_FAILURE() << "left behind: " << s;
 }
 

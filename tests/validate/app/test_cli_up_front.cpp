@@ -113,14 +113,60 @@ TEST_F(Cli, HugeDatasetsPlanTheirEntriesLazily) {
   EXPECT_NE(second.err.find("(2 simulated, 2 resumed)"), std::string::npos) << second.err;
   EXPECT_TRUE(fs::exists(path("d.h5.parts/entry-3.h5")));
   EXPECT_FALSE(fs::exists(path("d.h5")));
-  // An entry this run computes is validated before anything is written.
+  // A sampled range reaching past what the key allows is refused before anything is written.
   write("bad.toml", "[dataset]\nexperiment = \"base.toml\"\nentries = 1099511627776\nseed = 5\n\n"
                     "[[parameter]]\nkey = \"geometry.tau0\"\nrange = [0.5, 1.5]\n");
   const Result bad = shell("timeout 120 " + quote(MCREF_BINARY) + " dataset " + quote(path("bad.toml")) + " -o " +
                            quote(path("b.h5")) + " --stop-after 50");
   EXPECT_EQ(bad.exit_code, 2) << bad.err;
-  expect_one_line_error(bad, {"bad.toml: entry", "geometry.tau0"});
+  expect_one_line_error(bad, {"bad.toml: key 'geometry.tau0': 1.5 (the upper end of range)", "= 1.5 is out of range; allowed (0, 1)"});
   EXPECT_FALSE(fs::exists(path("b.h5.parts")));
+}
+
+// Every value a dataset's parameters can take is checked before any work,
+// whichever entries this run computes: a bad grid value or choice that only
+// later entries (--stop-after) or another shard's entries would meet, and the
+// ends of a sampled range. (Before, only the entries a run computed were
+// checked: the bad value failed a later run, after hours of work.)
+TEST_F(Cli, EveryParameterValueIsCheckedBeforeAnyEntry) {
+  write("base.toml", experiment("tau0 = 0.5\nbeta = 0.8\n", "", "quantity = \"tau_plus\"\ntheta_i_deg = [30]\nsamples = 200\n"));
+  struct Case {
+    std::string parameters, options;
+    std::vector<std::string> expected;
+  };
+  const std::vector<Case> cases{
+      // The last of a grid's values, with --stop-after 1: entries 0 and 1 are fine.
+      {"key = \"geometry.tau0\"\nvalues = [0.3, 0.5, 1.25]\n", "--stop-after 1",
+       {"ds.toml: key 'geometry.tau0': 1.25 (values)", "other parameters as in entry 0", "= 1.25 is out of range; allowed (0, 1)"}},
+      // A bad value met only by the other shard's entries (entry 1 of 2).
+      {"key = \"geometry.tau0\"\nvalues = [0.3, 2.5]\n", "--shard 0/2",
+       {"ds.toml: key 'geometry.tau0': 2.5 (values)", "= 2.5 is out of range; allowed (0, 1)"}},
+      // A bad choice, whichever entry 0 draws.
+      {"key = \"geometry.tau0\"\nchoices = [0.4, -0.1]\n", "--stop-after 1",
+       {"ds.toml: key 'geometry.tau0': -0.1 (choices)", "= -0.1 is out of range; allowed (0, 1)"}},
+      // The upper end of a log-uniform range.
+      {"key = \"geometry.beta\"\nrange = [0.5, 200.0]\ndistribution = \"log_uniform\"\n", "--stop-after 1",
+       {"ds.toml: key 'geometry.beta': 200 (the upper end of range)", "= 200 is out of range; allowed (0, 100]"}},
+  };
+  for (const Case& c : cases) {
+    write("ds.toml", "[dataset]\nexperiment = \"base.toml\"\nentries = 1\nseed = 5\n\n[[parameter]]\n" + c.parameters);
+    const Result r = mcref("dataset " + quote(path("ds.toml")) + " -o " + quote(path("d.h5")) + " --threads 1 --quiet " + c.options);
+    EXPECT_EQ(r.exit_code, 2) << c.parameters << r.err;
+    expect_one_line_error(r, c.expected);
+    EXPECT_FALSE(fs::exists(path("d.h5.parts"))) << c.parameters;
+    EXPECT_FALSE(fs::exists(path("d.h5"))) << c.parameters;
+  }
+  // The same datasets with the bad value mended run (entry 0 is fine in each).
+  for (const Case& c : cases) {
+    std::string parameters = c.parameters;
+    for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{{"1.25", "0.75"}, {"2.5", "0.25"}, {"-0.1", "0.1"}, {"200.0", "50.0"}})
+      if (const auto at = parameters.find(from); at != std::string::npos) parameters.replace(at, from.size(), to);
+    write("ds.toml", "[dataset]\nexperiment = \"base.toml\"\nentries = 1\nseed = 5\n\n[[parameter]]\n" + parameters);
+    const Result r = mcref("dataset " + quote(path("ds.toml")) + " -o " + quote(path("d.h5")) + " --threads 1 --quiet " + c.options);
+    EXPECT_EQ(r.exit_code, 0) << parameters << r.err;
+    fs::remove_all(path("d.h5"));
+    fs::remove_all(path("d.h5.parts"));
+  }
 }
 
 // A case's name names its table file and plots (tables/<name>.h5): an empty
@@ -135,4 +181,16 @@ TEST_F(Cli, CaseNamesThatMakeNoFileNameAreRefused) {
     EXPECT_FALSE(fs::exists(path("out"))) << "name \"" << name << "\"";
     fs::remove_all(path("out"));
   }
+}
+
+// A case whose experiment is bad is named, with the experiment's own file and
+// key: cases may share an experiment file and differ only in their `set`s.
+TEST_F(Cli, SuiteErrorsNameTheCase) {
+  write("x.toml", experiment());
+  write("s.toml", "[suite]\nname = \"s\"\n\n[[case]]\nname = \"good\"\nexperiment = \"x.toml\"\n\n"
+                  "[[case]]\nname = \"dense\"\nexperiment = \"x.toml\"\nset = [\"geometry.tau0=1.5\"]\n");
+  const Result r = mcref("validate " + quote(path("s.toml")) + " -o " + quote(path("out")) + " --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  expect_one_line_error(r, {"s.toml: key 'case.1': case \"dense\": ", "x.toml", "geometry.tau0", "= 1.5 is out of range; allowed (0, 1)"});
+  EXPECT_FALSE(fs::exists(path("out")));
 }
