@@ -117,6 +117,20 @@ void check_table_names(const Experiment& ex, const std::vector<std::string>& nam
     }
 }
 
+void check_table_layout(const Experiment& ex, const Table& table, const std::string& file, const std::string& key) {
+  check_table_names(ex, {table.name}, file, key);
+  const std::vector<Table> outline = table_outline(ex);
+  const Table& o = *std::find_if(outline.begin(), outline.end(), [&](const Table& t) { return t.name == table.name; });
+  const auto layout = [](const Table& t) {
+    std::string s = t.quantity + " over (";
+    for (std::size_t i = 0; i < t.axes.size(); ++i)
+      s += (i ? ", " : "") + t.axes[i].name + " " + (t.axes[i].kind == Axis::Kind::Bins ? "bins" : "points") + " in " + t.axes[i].unit;
+    return s + ")";
+  };
+  if (layout(table) != layout(o))
+    throw ConfigError(file, key, "table \"" + table.name + "\" is " + layout(table) + ", and the experiment's is " + layout(o));
+}
+
 double measure_cells(const Measure& m, const Experiment& ex) { return measure_size(m, ex).cells; }
 
 int effective_threads(const Experiment& ex, int requested) {

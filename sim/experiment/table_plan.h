@@ -26,6 +26,12 @@ std::vector<Table> table_outline(const Experiment& ex);
 void check_table_names(const Experiment& ex, const std::vector<std::string>& names, const std::string& file,
                        const std::string& key);
 
+// The same for a table given whole (one built in Python): it must also be laid
+// out as the experiment's table of that name, with its quantity and its axes'
+// names, kinds and units in order (their values and sizes may differ), since
+// the models read the axes by position.
+void check_table_layout(const Experiment& ex, const Table& table, const std::string& file, const std::string& key);
+
 // Cells of a measure's tables, from the measure alone (nothing allocated):
 // an upper bound of the cells of its empty_tables (small derived tables are
 // counted even where they are not written).

@@ -34,6 +34,7 @@ struct Slot {
 std::array<Slot, kSlots> g_slots;
 std::mutex g_slots_mutex;
 std::once_flag g_handlers_installed;
+std::atomic<bool> g_signals_to_host{false};
 
 extern "C" void remove_temps_and_reraise(int sig) {
   for (Slot& s : g_slots)
@@ -43,6 +44,7 @@ extern "C" void remove_temps_and_reraise(int sig) {
 }
 
 void install_handlers() {
+  if (g_signals_to_host.load()) return;
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
     struct sigaction old {};
     sigaction(sig, nullptr, &old);
@@ -74,6 +76,8 @@ void release_slot(int i) {
 }
 
 }  // namespace
+
+void leave_signals_to_host() { g_signals_to_host.store(true); }
 
 int remove_stale_temps(const std::string& output) {
   const fs::path out = fs::absolute(output);

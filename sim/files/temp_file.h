@@ -33,6 +33,13 @@ class TempFile {
 // failure: write errors are not bad input, and the CLI exits 1 on them).
 void write_text_file(const std::string& path, const std::string& text);
 
+// Leaves SIGINT, SIGTERM and SIGHUP to the host process: no TempFile installs
+// its handlers afterwards. For the Python module, whose interpreter handles them
+// itself (SIGINT raises KeyboardInterrupt once the call returns, and the
+// temporary of a write it interrupts is removed by the destructor; a temporary
+// left by a process a signal ended is removed by the next write of that output).
+void leave_signals_to_host();
+
 // <output>.tmp.<pid> files whose process no longer runs, removed; returns how many.
 int remove_stale_temps(const std::string& output);
 

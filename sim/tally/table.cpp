@@ -1,14 +1,30 @@
 #include "sim/tally/table.h"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
+#include <string>
 
 #include "models/core/statistics.h"
 
 namespace mcref {
 
+namespace {
+
+std::string full_digits(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.17g", x);
+  return b;
+}
+
+}  // namespace
+
 Axis Axis::bins(std::string name, std::string unit, std::vector<double> edges) {
   if (edges.size() < 2) throw std::invalid_argument("axis " + name + " needs at least 2 edges");
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    if (!std::isfinite(edges[i]) || (i > 0 && !(edges[i] > edges[i - 1])))
+      throw std::invalid_argument("axis " + name + ": bin edges must be finite and increasing (edge " + std::to_string(i) +
+                                  " is " + full_digits(edges[i]) + (i > 0 ? ", after " + full_digits(edges[i - 1]) : "") + ")");
   return {std::move(name), std::move(unit), Kind::Bins, std::move(edges)};
 }
 
@@ -20,6 +36,9 @@ Axis Axis::uniform_bins(std::string name, std::string unit, double lo, double hi
 }
 
 Axis Axis::points(std::string name, std::string unit, std::vector<double> values) {
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      throw std::invalid_argument("axis " + name + ": point " + std::to_string(i) + " is not finite");
   return {std::move(name), std::move(unit), Kind::Points, std::move(values)};
 }
 

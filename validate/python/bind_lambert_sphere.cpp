@@ -22,7 +22,6 @@ namespace ls = lambert_sphere;
 
 namespace {
 
-using A = py::array_t<double, py::array::forcecast>;
 
 // The suite's d'Eon variants (validate/spheres/sphere_models.cpp, make_deon).
 ls::BrdfOptions deon_options(const std::string& variant, double& c) {
@@ -51,10 +50,7 @@ ls::BrdfOptions deon_options(const std::string& variant, double& c) {
   return o;
 }
 
-void check_albedo(double c, bool open_top) {
-  if (!(c >= 0 && (open_top ? c < 1 : c <= 1)))
-    throw ConfigError("<python>", "c", "= " + std::to_string(c) + " must be in [0, 1" + (open_top ? ")" : "]"));
-}
+void check_albedo(double c, bool open_top) { check_argument("c", c, {0, 1, false, open_top}); }
 
 }  // namespace
 
@@ -83,7 +79,7 @@ void bind_lambert_sphere(py::module_& root) {
           const ls::BrdfOptions o = deon_options(variant, cc);
           const ls::Brdf brdf(cc, o);
           return py::vectorize([&](double mi, double mo, double ph) { return brdf(mi, mo, ph); })(
-              A::ensure(mu_i), A::ensure(mu_o), A::ensure(phi));
+              numbers(mu_i), numbers(mu_o), numbers(phi));
         }, py::arg("c"), py::arg("mu_i"), py::arg("mu_o"), py::arg("phi"), py::arg("variant") = "deon_published",
         "Eq. 11-12 with Eq. 21: f1 + f_m^(0) (Eq. 38) + f_m^(1) cos phi, one albedo c (scalar), the\n"
         "suite variants: deon_published (Eq. 28, fits Eq. 23-27, 31-37), deon_corrected (2 x Eq. 22 -\n"
@@ -93,7 +89,7 @@ void bind_lambert_sphere(py::module_& root) {
           check_albedo(c, false);
           const ls::ReferenceBrdf ref(std::min(c, 0.9999), true);
           return py::vectorize([&](double mi, double mo, double ph) { return ref(mi, mo, ph); })(
-              A::ensure(mu_i), A::ensure(mu_o), A::ensure(phi));
+              numbers(mu_i), numbers(mu_o), numbers(phi));
         }, py::arg("c"), py::arg("mu_i"), py::arg("mu_o"), py::arg("phi"),
         "Reference BRDF without fits: Eq. 10 + exact three-term multiple-scattering modes (c capped at 0.9999).");
 

@@ -179,8 +179,7 @@ void bind_micrograin(py::module_& root) {
             if (part != "grain") v += mg::lrpb23_base_part(f, base, i, o);
             return v;
           });
-          using A = py::array_t<double, py::array::forcecast>;
-          return f(A::ensure(tau0), A::ensure(beta), A::ensure(ti), A::ensure(pi_), A::ensure(to), A::ensure(po));
+          return f(numbers(tau0), numbers(beta), numbers(ti), numbers(pi_), numbers(to), numbers(po));
         }, py::arg("tau0"), py::arg("beta"), py::arg("theta_i"), py::arg("phi_i"), py::arg("theta_o"), py::arg("phi_o"),
         py::arg("grain"), py::arg("base"), py::arg("lambda_method") = "series4", py::arg("part") = "total",
         "LRPB23 Eq. 1-2 without the base's delta lobe (suite models lrpb23_series4 / _quadrature /\n"

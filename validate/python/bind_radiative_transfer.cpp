@@ -20,7 +20,7 @@ void bind_radiative_transfer(py::module_& root) {
   m.def("h_isotropic_table", [](double albedo, py::object mu) {
           if (!(albedo >= 0 && albedo <= 1)) throw ConfigError("<python>", "albedo", "must be in [0, 1]");
           const rt::HTable h = rt::isotropic_h_table(albedo);
-          return py::vectorize([&](double x) { return h(x); })(py::array_t<double, py::array::forcecast>::ensure(mu));
+          return py::vectorize([&](double x) { return h(x); })(numbers(mu));
         }, py::arg("albedo"), py::arg("mu"), "H(mu) for one albedo, tabulated once (|rel. error| < 1e-13), ~0.5 us per value.");
   m.def("chandrasekhar_isotropic", py::vectorize(&rt::brdf_isotropic), py::arg("albedo"), py::arg("mu_i"), py::arg("mu_o"),
         "All orders (suite model chandrasekhar_isotropic): albedo H(mu_i) H(mu_o) / (4 pi (mu_i + mu_o)).");

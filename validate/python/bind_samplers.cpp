@@ -1,6 +1,7 @@
 // mcref.samplers: every sampler as (samples, pdf), from given uniforms
 // (array of shape (n, k), values in [0, 1)) or from a seed (n draws of the
 // project's Rng, models/core/rng.h), for users' own chi-square tests.
+#include <cmath>
 #include <functional>
 
 #include "models/core/rng.h"
@@ -24,6 +25,7 @@ using Uniforms = py::array_t<double, py::array::c_style | py::array::forcecast>;
 // The (n, k) uniforms: given, or drawn from Rng(seed).
 std::vector<double> uniforms(const py::object& u, const py::object& seed, std::int64_t n, int k) {
   if (!u.is_none()) {
+    if (!seed.is_none() || n != 0) throw ConfigError("<python>", "u", "give either uniforms u or a seed (with n), not both");
     const Uniforms a = Uniforms::ensure(u);
     if (!a || a.ndim() != 2 || a.shape(1) != k)
       throw ConfigError("<python>", "u", "must be an array of shape (n, " + std::to_string(k) + ")");
@@ -34,7 +36,7 @@ std::vector<double> uniforms(const py::object& u, const py::object& seed, std::i
   }
   if (seed.is_none()) throw ConfigError("<python>", "u", "give either uniforms u or a seed (with n)");
   if (n < 1) throw ConfigError("<python>", "n", "must be at least 1");
-  Rng rng(seed.cast<std::uint64_t>());
+  Rng rng(integer_argument("seed", seed, UINT64_MAX));
   std::vector<double> v(static_cast<std::size_t>(n) * k);
   for (double& x : v) x = rng.uniform();
   return v;
@@ -59,6 +61,14 @@ py::tuple run(const std::vector<double>& u, int k, const std::function<double(co
   return py::make_tuple(samples, pdf);
 }
 
+// A grain field's parameters, checked as in an experiment (tau0 in (0, 1), beta in (0, 100]).
+micrograin::GrainField grain_field(double tau0, double bx, double by) {
+  check_argument("tau0", tau0, {0, 1, true, true});
+  check_argument("beta_x", bx, {0, 100, true, false});
+  check_argument("beta_y", by, {0, 100, true, false});
+  return {tau0, bx, by};
+}
+
 const micrograin::VndfSampler& vndf_sampler() {
   static const micrograin::VndfSampler sampler;  // its table is built once (~0.3 s)
   return sampler;
@@ -75,7 +85,7 @@ void bind_samplers(py::module_& root) {
       "normal), pdf per unit solid angle. Uniforms: u of shape (n, k) in [0, 1), or seed and n.");
 
   m.def("micrograin_ndf", [](double tau0, double bx, double by, py::object u, py::object seed, std::int64_t n) {
-          const micrograin::GrainField f{tau0, bx, by};
+          const micrograin::GrainField f = grain_field(tau0, bx, by);
           return run(uniforms(u, seed, n, 2), 2, [&](const double* x, Vec3& m) {
             m = micrograin::sample_ndf(f, x[0], x[1]);
             return micrograin::ndf_pdf(f, m);
@@ -84,7 +94,9 @@ void bind_samplers(py::module_& root) {
         "Normals m with density D(m) cos theta_m (LRPB23 Eq. 19-20, sign-corrected; vNDF Eq. 14); k = 2.");
   m.def("micrograin_vndf", [](double tau0, double bx, double by, double theta_i, double phi_i, py::object u,
                               py::object seed, std::int64_t n) {
-          const micrograin::GrainField f{tau0, bx, by};
+          const micrograin::GrainField f = grain_field(tau0, bx, by);
+          check_argument("theta_i", theta_i, {0, kPi / 2, false, false});
+          check_argument("phi_i", phi_i, {-INFINITY, INFINITY, true, true});
           const Vec3 wi = spherical_direction(theta_i, phi_i);
           const micrograin::VndfSampler& s = vndf_sampler();
           return run(uniforms(u, seed, n, 3), 3, [&](const double* x, Vec3& m) {
@@ -115,7 +127,10 @@ void bind_samplers(py::module_& root) {
         "Specular SGGX flake phase: wo ~ f_p(wi -> .) = D(h) / (4 sigma(wi)) (SpongeCake Eq. 4), wi toward\n"
         "the light; pdf = f_p; k = 2.");
   m.def("lambert_sphere_phase", [](std::array<double, 3> propagation, py::object u, py::object seed, std::int64_t n) {
-          const Vec3 d = normalize(Vec3{propagation[0], propagation[1], propagation[2]});
+          const Vec3 p{propagation[0], propagation[1], propagation[2]};
+          if (!(std::isfinite(dot(p, p)) && dot(p, p) > 0))
+            throw ConfigError("<python>", "propagation", "must be a finite, non-zero vector");
+          const Vec3 d = normalize(p);
           return run(uniforms(u, seed, n, 4), 4, [&](const double* x, Vec3& wo) {
             const double mu = lambert_sphere::sample_phase_cosine_exact(x[0], x[1], x[2]);
             wo = lambert_sphere::scattered_direction(d, mu, x[3]);

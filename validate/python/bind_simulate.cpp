@@ -26,7 +26,15 @@ toml::array to_toml_array(const py::handle& list, const std::string& key);
 template <typename Insert>
 void insert_value(const py::handle& v, const std::string& key, Insert insert) {
   if (py::isinstance<py::bool_>(v)) insert(toml::value<bool>(v.cast<bool>()));
-  else if (py::isinstance<py::int_>(v)) insert(toml::value<std::int64_t>(v.cast<std::int64_t>()));
+  else if (py::isinstance<py::int_>(v)) {
+    std::int64_t i = 0;
+    try {
+      i = v.cast<std::int64_t>();
+    } catch (const py::cast_error&) {
+      throw ConfigError(kDictFile, key, "= " + std::string(py::repr(v)) + " is out of range; allowed [-9223372036854775808, 9223372036854775807]");
+    }
+    insert(toml::value<std::int64_t>(i));
+  }
   else if (py::isinstance<py::float_>(v)) insert(toml::value<double>(v.cast<double>()));
   else if (py::isinstance<py::str>(v)) insert(toml::value<std::string>(v.cast<std::string>()));
   else if (py::isinstance<py::dict>(v)) insert(to_toml_table(v, key));
@@ -88,9 +96,7 @@ TableFile run(const Experiment& ex, int threads, bool quiet, const std::vector<s
 
 std::vector<std::string> overrides(std::vector<std::string> sets, py::object seed) {
   if (!seed.is_none()) {
-    const long long s = seed.cast<long long>();
-    if (s < 0) throw ConfigError("<python>", "seed", "= " + std::to_string(s) + " must be an integer in [0, 9223372036854775807]");
-    sets.push_back("run.seed=" + std::to_string(s));
+    sets.push_back("run.seed=" + std::to_string(integer_argument("seed", seed, INT64_MAX)));
   }
   return sets;
 }
@@ -149,6 +155,7 @@ void bind_simulate(py::module_& m) {
   m.def("evaluate_model", [](const std::string& model, const Table& table, py::object config, bool return_accuracy) {
     const auto [text, file] = config_text(config);
     const Experiment ex = parse_experiment(text, file);
+    check_table_layout(ex, table, "<python>", "table");
     std::vector<double> v;
     ModelAccuracy accuracy;
     {

@@ -6,8 +6,13 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstdint>
+#include <string>
+
 
 #include "models/core/vec.h"
+#include "sim/experiment/config_error.h"
+#include "sim/experiment/toml_reader.h"
 
 namespace mcref::python {
 
@@ -17,12 +22,49 @@ namespace py = pybind11;
 // Model functions are wrapped with py::vectorize: every double argument
 // broadcasts over numpy arrays; a call on scalars returns a float.
 
+using Numbers = py::array_t<double, py::array::forcecast>;
+
+// An argument as an array of doubles; anything that is not numbers (a string,
+// a list holding one) is a TypeError. (ensure() returns a null array then,
+// which py::vectorize would dereference.)
+inline Numbers numbers(const py::handle& o) {
+  Numbers a = Numbers::ensure(o);
+  if (!a)
+    throw py::type_error("expected a number or an array of numbers, got " + std::string(py::str(py::repr(o))));
+  return a;
+}
+
 // py::vectorize(f) applied to Python objects (arrays or scalars), for model
 // functions that capture non-numeric arguments (a stack of layers, a
 // micro-BRDF) converted once per call.
 template <typename F, typename... O>
 py::object vectorized(F&& f, const O&... objects) {
-  return py::vectorize(std::forward<F>(f))(py::array_t<double, py::array::forcecast>::ensure(objects)...);
+  return py::vectorize(std::forward<F>(f))(numbers(objects)...);
+}
+
+// A scalar argument checked against its allowed range: a ConfigError naming
+// the argument, its value (every digit) and the range, as the CLI's.
+// A non-negative integer argument (a Python or numpy integer) at most `hi`; a
+// float, a bool or anything out of range is a ConfigError naming the argument.
+inline std::uint64_t integer_argument(const char* name, const py::handle& v, std::uint64_t hi) {
+  const auto fail = [&] {
+    return ConfigError("<python>", name, "= " + std::string(py::repr(v)) + " must be an integer in [0, " + std::to_string(hi) + "]");
+  };
+  if (py::isinstance<py::bool_>(v) || !PyIndex_Check(v.ptr())) throw fail();
+  const py::object i = py::reinterpret_steal<py::object>(PyNumber_Index(v.ptr()));
+  if (!i) throw py::error_already_set();
+  const unsigned long long x = PyLong_AsUnsignedLongLong(i.ptr());
+  if (PyErr_Occurred()) {
+    PyErr_Clear();
+    throw fail();
+  }
+  if (x > hi) throw fail();
+  return x;
+}
+
+inline void check_argument(const char* name, double value, const Range& allowed) {
+  if (!allowed.contains(value))
+    throw ConfigError("<python>", name, "= " + exact_text(value) + " is out of range; allowed " + allowed.text());
 }
 
 void bind_tables(py::module_& m);        // Table, read_tables, write_tables

@@ -2,11 +2,15 @@
 #include <hdf5.h>
 
 #include "sim/experiment/config_error.h"
+#include "sim/files/temp_file.h"
 #include "validate/python/bindings.h"
 
 PYBIND11_MODULE(mcref, m) {
   // As in the CLI (validate/app/main.cpp): every file is closed explicitly.
   H5dont_atexit();
+  // Python's signal handlers stay (Ctrl-C raises KeyboardInterrupt; a write's
+  // temporary is removed by its destructor): sim/files/temp_file.h.
+  mcref::leave_signals_to_host();
   m.doc() =
       "mcref: Monte Carlo ground truth for analytic BRDF models of porous microstructures.\n"
       "\n"
