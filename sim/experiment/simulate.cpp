@@ -32,6 +32,7 @@ std::vector<Table> simulate(const Experiment& ex, const SimulateOptions& options
   for (const Measure& m : ex.measures) work += work_units(m);
   work *= ex.run.batches;
   Progress progress(options.label, work, options.quiet || !ranks.root());
+  progress.stop_when(options.cancel);
   const BatchLoop loop(ranks, progress, work / ex.run.batches);
   std::size_t grains = 0;
   std::vector<Table> out = ex.kind == "micrograin" ? simulate_micrograin(ex, loop, &grains)

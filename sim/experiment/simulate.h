@@ -1,5 +1,6 @@
 #pragma once
 // The public entry point of the simulator: experiment -> tables.
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct SimulateOptions {
   // returned tables are the same bits either way. A name the experiment does
   // not write is an error.
   std::vector<std::string> tables;
+  // Set from another thread to stop the run: simulate() throws Cancelled
+  // (sim/parallel/progress.h) when a measure of a batch is done.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 struct SimulateSummary {

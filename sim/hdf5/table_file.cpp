@@ -74,8 +74,31 @@ Provenance make_provenance(const std::string& config_text, const std::string& so
   return p;
 }
 
+namespace {
+
+// Names the file's layout cannot hold (tables made by hand, in Python): a
+// table's group and an axis's datasets are named after them, beside the
+// table's own datasets.
+void check_names(const std::string& path, const TableFile& f) {
+  const auto usable = [](const std::string& n) { return !n.empty() && n != "." && n != ".." && n.find('/') == std::string::npos; };
+  std::set<std::string> tables;
+  for (const Table& t : f.tables) {
+    if (!usable(t.name)) throw ConfigError(path, "", "table name \"" + t.name + "\" must be non-empty, not . or .., and without '/'");
+    if (!tables.insert(t.name).second) throw ConfigError(path, "", "two tables are named \"" + t.name + "\"");
+    std::set<std::string> taken{"value", "stderr", "sum", "sum_sq", "bnds"};
+    for (const Axis& a : t.axes)
+      for (const std::string& n : {a.name, a.name + "_bounds", a.name + "_label"})
+        if (!usable(a.name) || !taken.insert(n).second)
+          throw ConfigError(path, "", "table \"" + t.name + "\": axis name \"" + a.name + "\" must be non-empty, without '/', "
+                                      "not value, stderr, sum, sum_sq or bnds, and unlike the others and their _bounds and _label");
+  }
+}
+
+}  // namespace
+
 void write_table_file(const std::string& path, const TableFile& f) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  check_names(path, f);
   TempFile tmp(path);
   try {
     h5::Handle fcpl = h5::file_create_plist();

@@ -25,6 +25,7 @@ double Progress::elapsed_seconds() const {
 }
 
 void Progress::advance(double work) {
+  if (stop_ && stop_->load(std::memory_order_relaxed)) throw Cancelled();
   done_ += work;
   if (!enabled_) return;
   const auto now = std::chrono::steady_clock::now();

@@ -94,7 +94,7 @@ void bind_lambert_sphere(py::module_& root) {
         "Reference BRDF without fits: Eq. 10 + exact three-term multiple-scattering modes (c capped at 0.9999).");
 
   // H-functions (Sec. 3.1-3.4)
-  m.def("h_exact", py::vectorize([](int order, double c, double mu) { return ls::h_exact(order, c, mu); }),
+  m.def("h_exact", py::vectorize([](double order, double c, double mu) { return ls::h_exact(whole_argument("m", order, 0, 2), c, mu); }),
         py::arg("m"), py::arg("c"), py::arg("mu"), "Exact H^(m)(mu), m = 0, 1, 2, by Fock's integral (Eq. 16-20).");
   m.def("h1_fit", py::vectorize(&ls::h1_fit), py::arg("c"), py::arg("mu"), "Eq. 23: H^(1) ~ Eq. 24 x Eq. 25 (as printed).");
   m.def("h1_fit_log_separable", py::vectorize(&ls::h1_fit_log_separable), py::arg("c"), py::arg("mu"),

@@ -113,8 +113,8 @@ void bind_micrograin(py::module_& root) {
         "vNDF Eq. 5: sigma(i, h) = pi (1 - h^2) + sigma_s(i, h), unit-space cap (theta_i unit-space).");
 
   // Smith Lambda and G1, LRPB23 Sec. 5.2
-  m.def("lambda_series", py::vectorize([](double tau0, double beta, double theta, int n) {
-          return mg::lambda_series(mg::isotropic_field(tau0, beta), theta, n);
+  m.def("lambda_series", py::vectorize([](double tau0, double beta, double theta, double n) {
+          return mg::lambda_series(mg::isotropic_field(tau0, beta), theta, whole_argument("n", n, 0, 64));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta"), py::arg("n") = 4,
         "LRPB23 Eq. 25: Smith Lambda by the series truncated after F_n (closed forms for k <= 4).");
   m.def("lambda_quadrature", py::vectorize([](double tau0, double beta, double theta) {
@@ -152,6 +152,12 @@ void bind_micrograin(py::module_& root) {
   // BSDFs (LRPB23 Eq. 1-2; vNDF Eq. 1)
   py::class_<mg::MicroSurface>(m, "MicroSurface", "A micro-BRDF of grains or base, one colour channel.")
       .def(py::init([](const std::string& type, double kd, double eta, double kappa, double ior, double alpha) {
+             // The ranges of an experiment's [material] keys (sim/micrograin/micrograin_materials.cpp).
+             check_argument("kd", kd, {0, 1, false, false});
+             check_argument("eta", eta, {0, 100, true, false});
+             check_argument("kappa", kappa, {0, 100, false, false});
+             check_argument("ior", ior, {1, 4, true, false});
+             check_argument("alpha", alpha, {0, 4, true, false});
              mg::MicroSurface s;
              s.type = surface_type(type);
              s.kd = kd;

@@ -1,6 +1,8 @@
 // mcref.sggx: the SGGX microflake distribution (Heitz et al. 2015) and
 // SpongeCake single scattering (Wang et al. 2022), vectorised over directions;
 // suite models spongecake_ss_brdf / _btdf / _substrate.
+#include <cmath>
+
 #include "models/sggx/flake_phase.h"
 #include "models/sggx/hg_phase.h"
 #include "models/sggx/layer.h"
@@ -14,6 +16,15 @@ namespace mcref::python {
 namespace {
 
 Vec3 vec3(const std::array<double, 3>& v) { return {v[0], v[1], v[2]}; }
+
+// A direction given as a vector (normalised by the factories): finite, not zero.
+Vec3 axis_vector(const char* name, const std::array<double, 3>& v) {
+  const Vec3 a = vec3(v);
+  if (!(std::isfinite(dot(a, a)) && dot(a, a) > 0)) throw ConfigError("<python>", name, "must be a finite, non-zero vector");
+  return a;
+}
+
+const Range kUnit{0, 1, false, false};
 
 // Model factories throw std::invalid_argument: one line for Python too.
 template <class F>
@@ -37,11 +48,13 @@ void bind_sggx(py::module_& root) {
 
   py::class_<sggx::Sggx>(m, "Sggx", "An SGGX matrix S (symmetric positive definite).")
       .def_static("surface_like", [](double alpha, std::array<double, 3> wp) {
-        return checked("alpha", [&] { return sggx::surface_like(alpha, vec3(wp)); });
+        const Vec3 w = axis_vector("wp", wp);
+        return checked("alpha", [&] { return sggx::surface_like(alpha, w); });
       }, py::arg("alpha"), py::arg("wp") = std::array<double, 3>{0, 0, 1},
                   "S = a^2 I + (1 - a^2) wp wp^T: flakes with normals around +-wp.")
       .def_static("fiber_like", [](double alpha, std::array<double, 3> wp) {
-        return checked("alpha", [&] { return sggx::fiber_like(alpha, vec3(wp)); });
+        const Vec3 w = axis_vector("wp", wp);
+        return checked("alpha", [&] { return sggx::fiber_like(alpha, w); });
       }, py::arg("alpha"), py::arg("wp") = std::array<double, 3>{0, 0, 1},
                   "S = I + (a^2 - 1) wp wp^T: fibres along wp.")
       .def_static("from_matrix", [](std::array<std::array<double, 3>, 3> s) {
@@ -88,13 +101,18 @@ void bind_sggx(py::module_& root) {
 
   py::class_<sggx::Layer>(m, "Layer", "One homogeneous SpongeCake layer, one colour channel.")
       .def_static("sggx", [](double thickness, double density, const sggx::Sggx& s, double albedo, double f0) {
+        check_argument("albedo", albedo, kUnit);
+        check_argument("f0", f0, kUnit);
         return checked("layer", [&] { return sggx::sggx_layer(thickness, density, s, albedo, f0); });
       }, py::arg("thickness"), py::arg("density"), py::arg("sggx"), py::arg("albedo") = 1.0, py::arg("f0") = 1.0,
                   "Specular SGGX flakes, F = albedo Schlick(f0, |wi.h|); extinction density sigma(w).")
       .def_static("hg", [](double thickness, double density, double g, double albedo) {
+        check_argument("albedo", albedo, kUnit);
+        check_argument("g", g, {-1, 1, true, true});
         return checked("layer", [&] { return sggx::hg_layer(thickness, density, g, albedo); });
       }, py::arg("thickness"), py::arg("density"), py::arg("g"), py::arg("albedo") = 1.0)
       .def_static("isotropic", [](double thickness, double density, double albedo) {
+        check_argument("albedo", albedo, kUnit);
         return checked("layer", [&] { return sggx::isotropic_layer(thickness, density, albedo); });
       }, py::arg("thickness"), py::arg("density"), py::arg("albedo") = 1.0)
       .def_property_readonly("optical_thickness", &sggx::Layer::optical_thickness);

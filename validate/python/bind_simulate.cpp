@@ -2,7 +2,13 @@
 // mcref.evaluate_model (a suite model on the cells of a table).
 #include <toml++/toml.h>
 
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <future>
+#include <optional>
 #include <sstream>
+#include <thread>
 
 #include "sim/experiment/config_error.h"
 #include "sim/experiment/experiment.h"
@@ -79,6 +85,43 @@ std::pair<std::string, std::string> config_text(const py::object& config) {
   throw ConfigError("<python>", "config", "must be a dict or TOML text (use open(path).read() or simulate_file(path))");
 }
 
+// simulate() on a thread of its own, the GIL released, while this thread runs
+// Python's signal handlers every 0.1 s: on Ctrl-C (KeyboardInterrupt, or any
+// exception a handler raises) the run is cancelled, and the exception is raised
+// once it has stopped (within a measure of a batch).
+std::vector<Table> simulate_interruptible(const Experiment& ex, SimulateOptions opt) {
+  std::atomic<bool> cancel{false};
+  opt.cancel = &cancel;
+  std::vector<Table> tables;
+  std::exception_ptr failure;
+  std::optional<py::error_already_set> raised;
+  {
+    py::gil_scoped_release release;
+    std::promise<void> finished;
+    std::future<void> done = finished.get_future();
+    std::thread worker([&] {
+      try {
+        tables = simulate(ex, opt);
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      finished.set_value();
+    });
+    while (done.wait_for(std::chrono::milliseconds(100)) != std::future_status::ready) {
+      if (raised) continue;
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) {
+        raised.emplace();  // takes the exception the handler raised
+        cancel = true;
+      }
+    }
+    worker.join();
+  }
+  if (raised) throw std::move(*raised);
+  if (failure) std::rethrow_exception(failure);
+  return tables;
+}
+
 TableFile run(const Experiment& ex, int threads, bool quiet, const std::vector<std::string>& tables, const std::string& call) {
   check_table_names(ex, tables, "<python>", "tables");
   SimulateOptions opt;
@@ -86,10 +129,7 @@ TableFile run(const Experiment& ex, int threads, bool quiet, const std::vector<s
   opt.quiet = quiet;
   opt.tables = tables;
   TableFile out;
-  {
-    py::gil_scoped_release release;
-    out.tables = simulate(ex, opt);
-  }
+  out.tables = simulate_interruptible(ex, opt);
   out.provenance = make_provenance(ex.text, ex.file, ex.run.seed, call);
   return out;
 }
@@ -122,8 +162,9 @@ void bind_simulate(py::module_& m) {
         "Bad input raises mcref.ConfigError with the CLI's one-line message (the file is\n"
         "named '<dict>' or '<string>').");
 
-  m.def("simulate_file", [](const std::string& path, py::object seed, int threads, std::vector<std::string> sets, bool quiet,
-                            std::vector<std::string> tables) {
+  m.def("simulate_file", [](const std::filesystem::path& p, py::object seed, int threads, std::vector<std::string> sets,
+                            bool quiet, std::vector<std::string> tables) {
+    const std::string path = p.string();
     const Experiment ex = load_experiment(path, overrides(sets, seed));
     if (threads < 0 || threads > 1024) throw ConfigError("<python>", "threads", "= " + std::to_string(threads) + " must be an integer in [0, 1024]");
     return run(ex, threads, quiet, tables, "python: mcref.simulate_file " + path);
@@ -138,6 +179,10 @@ void bind_simulate(py::module_& m) {
   }, py::arg("config"), "Validates a config (dict or TOML text) and returns its canonical TOML text.");
 
   m.def("models", [](const std::string& quantity, const std::string& kind) {
+    if (kind != "micrograin" && kind != "slab" && kind != "spheres")
+      throw ConfigError("<python>", "kind", "\"" + kind + "\" must be one of micrograin, slab, spheres");
+    if (models_for(quantity, "micrograin").empty() && models_for(quantity, "slab").empty() && models_for(quantity, "spheres").empty())
+      throw ConfigError("<python>", "quantity", "\"" + quantity + "\" is predicted by no model of any geometry kind");
     std::vector<py::dict> out;
     for (const ModelInfo& i : models_for(quantity, kind)) {
       py::dict d;
@@ -150,7 +195,8 @@ void bind_simulate(py::module_& m) {
       out.push_back(d);
     }
     return out;
-  }, py::arg("quantity"), py::arg("kind") = "micrograin", "The suite models of a table quantity for a geometry kind.");
+  }, py::arg("quantity"), py::arg("kind") = "micrograin", "The suite models of a table quantity for a geometry kind (empty if none of that kind;\n"
+        "a quantity no model of any kind predicts, or an unknown kind, is a ConfigError).");
 
   m.def("evaluate_model", [](const std::string& model, const Table& table, py::object config, bool return_accuracy) {
     const auto [text, file] = config_text(config);

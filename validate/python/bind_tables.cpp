@@ -15,11 +15,14 @@ namespace {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
+// A copy of the table's data, read-only: writing into it would change nothing
+// in the table, so numpy refuses it (ValueError) instead of losing it.
 py::array_t<double> shaped(const Table& t, const std::vector<double>& v) {
   std::vector<py::ssize_t> shape;
   for (std::size_t s : t.shape()) shape.push_back(static_cast<py::ssize_t>(s));
   py::array_t<double> a(shape);
   std::copy(v.begin(), v.end(), a.mutable_data());
+  a.attr("setflags")(py::arg("write") = false);
   return a;
 }
 
@@ -179,12 +182,14 @@ void bind_tables(py::module_& m) {
         return s + ">";
       });
 
-  m.def("read_tables", [](const std::string& path) {
+  m.def("read_tables", [](const std::filesystem::path& p) {
+    const std::string path = p.string();
     py::gil_scoped_release release;
     return read_table_file(path);
   }, py::arg("path"), "Reads an mcref table file (HDF5). Raises ConfigError for a file mcref did not write.");
 
-  m.def("write_tables", [](const std::string& path, const TableFile& file) {
+  m.def("write_tables", [](const std::filesystem::path& p, const TableFile& file) {
+    const std::string path = p.string();
     check_output_file(path, {}, "path");
     py::gil_scoped_release release;
     write_table_file(path, file);
@@ -192,8 +197,9 @@ void bind_tables(py::module_& m) {
         "Writes a TableFile (from simulate or read_tables) to an HDF5 file that `mcref info` and\n"
         "`mcref validate` read; written to a temporary name and renamed, never half-written.");
 
-  m.def("write_tables", [](const std::string& path, const std::vector<Table>& tables, const std::string& config,
+  m.def("write_tables", [](const std::filesystem::path& p, const std::vector<Table>& tables, const std::string& config,
                            std::uint64_t seed, const std::string& command_line) {
+    const std::string path = p.string();
     check_output_file(path, {}, "path");
     TableFile f;
     f.tables = tables;

@@ -5,6 +5,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>  // paths: str or os.PathLike (pathlib.Path)
 
 #include <cstdint>
 #include <string>
@@ -60,6 +61,15 @@ inline std::uint64_t integer_argument(const char* name, const py::handle& v, std
   }
   if (x > hi) throw fail();
   return x;
+}
+
+// A whole number in [lo, hi] given where numbers broadcast (py::vectorize
+// would truncate 4.7 to 4): a ConfigError naming the argument otherwise.
+inline int whole_argument(const char* name, double value, int lo, int hi) {
+  if (!(value >= lo && value <= hi && value == static_cast<int>(value)))
+    throw ConfigError("<python>", name, "= " + exact_text(value) + " must be a whole number in [" + std::to_string(lo) + ", " +
+                                            std::to_string(hi) + "]");
+  return static_cast<int>(value);
 }
 
 inline void check_argument(const char* name, double value, const Range& allowed) {
