@@ -201,3 +201,15 @@ def test_paths_may_be_pathlib_paths(tmp_path):
     (tmp_path / "e.toml").write_text('[geometry]\nkind = "micrograin"\ntau0 = 0.5\nbeta = 1.0\ntile = 40\n\n'
                                      '[[measure]]\nquantity = "tau_plus"\ntheta_i_deg = [0]\nsamples = 100\n')
     assert mcref.simulate_file(tmp_path / "e.toml", seed=1, threads=1).names == ["tau_plus"]
+
+
+@pytest.mark.parametrize("call, key", [
+    ("tau_plus_eq22(-0.5, 1.0, 0.3)", "tau0"),  # gave -0.514
+    ("ndf_eq16(0.5, 0.0, 0.3)", "beta"),
+    ("ndf_eq17(np.array([0.5, 1.0]), 1.0, 0.3)", "tau0"),
+    ("vndf_eq13(0.5, 1.0, -1.0, 0.3, 0.0, 0.2, 0.0)", "beta_y"),
+    ("g1_smith_series_n4(0.5, float('nan'), 0.3)", "beta"),
+])
+def test_grain_field_parameters_outside_the_models_domain_are_refused(call, key):
+    with pytest.raises(mcref.ConfigError, match=f"key '{key}': .* is out of range"):
+        eval("mcref.micrograin." + call)

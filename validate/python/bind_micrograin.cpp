@@ -21,7 +21,18 @@ namespace mg = micrograin;
 
 namespace {
 
-mg::GrainField field(double tau0, double bx, double by) { return {tau0, bx, by}; }
+// The grain field's parameters in the models' domain, tau0 in (0, 1) and beta > 0
+// (outside it the formulas give numbers, e.g. tau+ < 0 for tau0 < 0).
+double tau0_in(double tau0) {
+  check_argument("tau0", tau0, {0, 1, true, true});
+  return tau0;
+}
+double beta_in(double beta, const char* name = "beta") {
+  check_argument(name, beta, {0, INFINITY, true, true});
+  return beta;
+}
+mg::GrainField field(double tau0, double bx, double by) { return {tau0_in(tau0), beta_in(bx, "beta_x"), beta_in(by, "beta_y")}; }
+mg::GrainField iso(double tau0, double beta) { return mg::isotropic_field(tau0_in(tau0), beta_in(beta)); }
 
 mg::LambdaMethod lambda_method(const std::string& s) {
   if (s == "series4") return mg::LambdaMethod::Series4;
@@ -59,32 +70,32 @@ void bind_micrograin(py::module_& root) {
         "LRPB23 Eq. 13: tau0 = 1 - exp(-pi rho r_x r_y).");
 
   // NDF, LRPB23 Sec. 4.2
-  m.def("ndf_eq17", py::vectorize([](double tau0, double beta, double theta_m) { return mg::ndf(tau0, beta, theta_m); }),
+  m.def("ndf_eq17", py::vectorize([](double tau0, double beta, double theta_m) { return mg::ndf(tau0_in(tau0), beta_in(beta), theta_m); }),
         py::arg("tau0"), py::arg("beta"), py::arg("theta_m"),
         "LRPB23 Eq. 17: D(m) = -ln(1 - tau0) (1 - tau0)^(tan^2/(beta^2 + tan^2)) / tau0 * D_GGX(m; beta),\n"
         "in 1/sr, normalised: integral of D cos theta_m over the hemisphere = 1.");
-  m.def("ndf_eq16", py::vectorize(&mg::ndf_eq16), py::arg("tau0"), py::arg("beta"), py::arg("theta_m"),
+  m.def("ndf_eq16", py::vectorize([](double tau0, double beta, double theta_m) { return mg::ndf_eq16(tau0_in(tau0), beta_in(beta), theta_m); }), py::arg("tau0"), py::arg("beta"), py::arg("theta_m"),
         "LRPB23 Eq. 16 (same function as Eq. 17, written with pi rho r_s^2 = -ln(1 - tau0)).");
   m.def("ndf_anisotropic", py::vectorize([](double tau0, double bx, double by, double theta_m, double phi_m) {
           return mg::ndf(field(tau0, bx, by), spherical_direction(theta_m, phi_m));
         }), py::arg("tau0"), py::arg("beta_x"), py::arg("beta_y"), py::arg("theta_m"), py::arg("phi_m"),
         "vNDF Eq. 7-8: anisotropic D(m) = det(M) / |M^T m|^4 D1(m'); equals ndf_eq17 when beta_x == beta_y.");
   m.def("ndf_ggx_alpha_tilde", py::vectorize([](double tau0, double beta, double theta_m) {
-          return mg::ggx_ndf(mg::equivalent_roughness(tau0, beta), theta_m);
+          return mg::ggx_ndf(mg::equivalent_roughness(tau0_in(tau0), beta_in(beta)), theta_m);
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta_m"),
         "GGX NDF at the equivalent roughness alpha~ of LRPB23 Eq. 18 (suite model ndf_ggx_alpha_tilde).");
-  m.def("equivalent_roughness", py::vectorize(&mg::equivalent_roughness), py::arg("tau0"), py::arg("beta"),
+  m.def("equivalent_roughness", py::vectorize([](double tau0, double beta) { return mg::equivalent_roughness(tau0_in(tau0), beta_in(beta)); }), py::arg("tau0"), py::arg("beta"),
         "LRPB23 Eq. 18: alpha~ = beta sqrt(-tau0 / ln(1 - tau0)).");
-  m.def("ndf_cdf_theta", py::vectorize(&mg::ndf_cdf_theta), py::arg("tau0"), py::arg("beta"), py::arg("theta_m"),
+  m.def("ndf_cdf_theta", py::vectorize([](double tau0, double beta, double theta_m) { return mg::ndf_cdf_theta(tau0_in(tau0), beta_in(beta), theta_m); }), py::arg("tau0"), py::arg("beta"), py::arg("theta_m"),
         "LRPB23 Eq. 19: CDF of theta_m under D(m) cos theta_m.");
   m.def("ggx_ndf", py::vectorize([](double alpha, double theta_m) { return mg::ggx_ndf(alpha, theta_m); }),
         py::arg("alpha"), py::arg("theta_m"), "GGX NDF alpha^2 / (pi (alpha^2 cos^2 + sin^2)^2), 1/sr.");
 
   // Visible filling factor, LRPB23 Sec. 5.1
-  m.def("tau_beta_eq21", py::vectorize([](double tau0, double beta, double theta) { return mg::tau_beta(tau0, beta, theta); }),
+  m.def("tau_beta_eq21", py::vectorize([](double tau0, double beta, double theta) { return mg::tau_beta(tau0_in(tau0), beta_in(beta), theta); }),
         py::arg("tau0"), py::arg("beta"), py::arg("theta"),
         "LRPB23 Eq. 21: tau_beta = 1 - (1 - tau0)^(gamma_beta(theta) / cos theta), full ellipsoids.");
-  m.def("tau_plus_eq22", py::vectorize([](double tau0, double beta, double theta) { return mg::tau_plus(tau0, beta, theta); }),
+  m.def("tau_plus_eq22", py::vectorize([](double tau0, double beta, double theta) { return mg::tau_plus(tau0_in(tau0), beta_in(beta), theta); }),
         py::arg("tau0"), py::arg("beta"), py::arg("theta"),
         "LRPB23 Eq. 22 (suite model tau_plus_eq22): visible filling factor of the half-ellipsoids,\n"
         "tau+ = 1 - sqrt((1 - tau_beta)(1 - tau0)); dimensionless, tau+(0) = tau0.");
@@ -93,7 +104,7 @@ void bind_micrograin(py::module_& root) {
         }), py::arg("tau0"), py::arg("beta_x"), py::arg("beta_y"), py::arg("theta"), py::arg("phi"),
         "LRPB23 Eq. 22 in the unit space (any beta_x, beta_y).");
   m.def("layer_weight_eq24", py::vectorize([](double tau0, double beta, double theta_i, double theta_o) {
-          const mg::GrainField f = mg::isotropic_field(tau0, beta);
+          const mg::GrainField f = iso(tau0, beta);
           return mg::layer_weight(f, spherical_direction(theta_i, 0), spherical_direction(theta_o, 0));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta_i"), py::arg("theta_o"),
         "LRPB23 Eq. 24: w+(i, o) = 1 - sqrt((1 - tau_beta(i))(1 - tau_beta(o))).");
@@ -114,27 +125,27 @@ void bind_micrograin(py::module_& root) {
 
   // Smith Lambda and G1, LRPB23 Sec. 5.2
   m.def("lambda_series", py::vectorize([](double tau0, double beta, double theta, double n) {
-          return mg::lambda_series(mg::isotropic_field(tau0, beta), theta, whole_argument("n", n, 0, 64));
+          return mg::lambda_series(iso(tau0, beta), theta, whole_argument("n", n, 0, 64));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta"), py::arg("n") = 4,
         "LRPB23 Eq. 25: Smith Lambda by the series truncated after F_n (closed forms for k <= 4).");
   m.def("lambda_quadrature", py::vectorize([](double tau0, double beta, double theta) {
-          return mg::lambda_quadrature(mg::isotropic_field(tau0, beta), theta);
+          return mg::lambda_quadrature(iso(tau0, beta), theta);
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta"),
         "Smith Lambda by quadrature of the exact NDF (Eq. 17); ~1e-10 relative up to 89 deg.");
   m.def("lambda_ggx_alpha_tilde", py::vectorize([](double tau0, double beta, double theta) {
-          return mg::lambda_ggx_equivalent(mg::isotropic_field(tau0, beta), theta);
+          return mg::lambda_ggx_equivalent(iso(tau0, beta), theta);
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta"), "GGX Lambda at alpha~ (LRPB23 Eq. 18).");
   m.def("g1_smith_quadrature", py::vectorize([](double tau0, double beta, double theta) {
-          return 1 / (1 + mg::lambda_quadrature(mg::isotropic_field(tau0, beta), theta));
+          return 1 / (1 + mg::lambda_quadrature(iso(tau0, beta), theta));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta"), "Smith G1 = 1/(1 + Lambda), Lambda by quadrature.");
   m.def("g1_smith_series_n4", py::vectorize([](double tau0, double beta, double theta) {
-          return 1 / (1 + mg::lambda_series(mg::isotropic_field(tau0, beta), theta, 4));
+          return 1 / (1 + mg::lambda_series(iso(tau0, beta), theta, 4));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta"), "Smith G1 with Lambda from Eq. 25, terms F0..F4.");
   m.def("g1_smith_ggx_alpha_tilde", py::vectorize([](double tau0, double beta, double theta) {
-          return 1 / (1 + mg::lambda_ggx_equivalent(mg::isotropic_field(tau0, beta), theta));
+          return 1 / (1 + mg::lambda_ggx_equivalent(iso(tau0, beta), theta));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta"), "Smith G1 of GGX at alpha~ (Eq. 18).");
   m.def("g1_exact_tau_plus", py::vectorize([](double tau0, double beta, double theta) {
-          const mg::GrainField f = mg::isotropic_field(tau0, beta);
+          const mg::GrainField f = iso(tau0, beta);
           const Vec3 wi = spherical_direction(theta, 0);
           return mg::tau_plus(f, wi) / (tau0 * (1 + mg::lambda_quadrature(f, wi)));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta"),
@@ -178,7 +189,7 @@ void bind_micrograin(py::module_& root) {
           if (part != "total" && part != "grain" && part != "base")
             throw ConfigError("<python>", "part", "\"" + part + "\" must be one of total, grain, base");
           auto f = py::vectorize([&](double tau0, double beta, double ti, double pi_, double to, double po) {
-            const mg::GrainField f = mg::isotropic_field(tau0, beta);
+            const mg::GrainField f = iso(tau0, beta);
             const Vec3 i = spherical_direction(ti, pi_), o = spherical_direction(to, po);
             double v = 0;
             if (part != "base") v += mg::lrpb23_grain_part(f, grain, i, o, l);
