@@ -18,7 +18,7 @@ void bind_radiative_transfer(py::module_& root) {
         "Chandrasekhar's H(mu) for isotropic scattering by Fock's integral (d'Eon Eq. 16),\n"
         "|error| < 1e-12; H(1) = 2.9078105 at albedo 1. ~0.2 ms per value (see h_isotropic_table).");
   m.def("h_isotropic_table", [](double albedo, py::object mu) {
-          if (!(albedo >= 0 && albedo <= 1)) throw ConfigError("<python>", "albedo", "must be in [0, 1]");
+          check_argument("albedo", albedo, {0, 1, false, false});
           const rt::HTable h = rt::isotropic_h_table(albedo);
           return py::vectorize([&](double x) { return h(x); })(numbers(mu));
         }, py::arg("albedo"), py::arg("mu"), "H(mu) for one albedo, tabulated once (|rel. error| < 1e-13), ~0.5 us per value.");

@@ -61,13 +61,6 @@ py::tuple run(const std::vector<double>& u, int k, const std::function<double(co
   return py::make_tuple(samples, pdf);
 }
 
-// A grain field's parameters, checked as in an experiment (tau0 in (0, 1), beta in (0, 100]).
-micrograin::GrainField grain_field(double tau0, double bx, double by) {
-  check_argument("tau0", tau0, {0, 1, true, true});
-  check_argument("beta_x", bx, {0, 100, true, false});
-  check_argument("beta_y", by, {0, 100, true, false});
-  return {tau0, bx, by};
-}
 
 const micrograin::VndfSampler& vndf_sampler() {
   static const micrograin::VndfSampler sampler;  // its table is built once (~0.3 s)

@@ -7,11 +7,13 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>  // paths: str or os.PathLike (pathlib.Path)
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 
 
 #include "models/core/vec.h"
+#include "models/micrograin/grain_field.h"
 #include "sim/experiment/config_error.h"
 #include "sim/experiment/toml_reader.h"
 
@@ -75,6 +77,21 @@ inline int whole_argument(const char* name, double value, int lo, int hi) {
 inline void check_argument(const char* name, double value, const Range& allowed) {
   if (!allowed.contains(value))
     throw ConfigError("<python>", name, "= " + exact_text(value) + " is out of range; allowed " + allowed.text());
+}
+
+// A micrograin field's parameters in the models' domain, tau0 in (0, 1) and
+// beta > 0 (outside it the formulas still give numbers, e.g. tau+ < 0 for tau0 < 0).
+inline double tau0_in(double tau0) {
+  check_argument("tau0", tau0, {0, 1, true, true});
+  return tau0;
+}
+inline double beta_in(double beta, const char* name = "beta") {
+  check_argument(name, beta, {0, INFINITY, true, true});
+  return beta;
+}
+// The field of (tau0, beta_x, beta_y), checked.
+inline micrograin::GrainField grain_field(double tau0, double bx, double by) {
+  return {tau0_in(tau0), beta_in(bx, "beta_x"), beta_in(by, "beta_y")};
 }
 
 void bind_tables(py::module_& m);        // Table, read_tables, write_tables
