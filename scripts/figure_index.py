@@ -43,6 +43,9 @@ def index_markdown():
             plots.insert(0, f"`figure_{figure_slug(figure)}.png` (overlay)")
         cases = ", ".join(f"`{n}`" for n in names)
         lines.append(f"| {figure} | {cases} | {', '.join(plots)} |")
+    # scripts/plot_maps.py: table_figure (every BRDF/BTDF table) and lobes_figure (>= 4 bins each way).
+    lines += ["", "Cases with BRDF/BTDF tables also have `<case>_table.png` (each whole table as an image) "
+              "and, with at least 4 θo and 4 φ bins, `<case>_lobes.png` (polar lobes at a few θi)."]
     with open(NOT_REPRODUCED, "rb") as f:
         missing = tomllib.load(f).get("figure", [])
     lines += ["", "Not reproduced:", ""]

@@ -76,6 +76,8 @@ def plane_view(table, ch):
     theta = np.degrees(table.axes[to].values)
     if table.quantity == "btdf":
         theta = 180.0 - theta
+    order = np.argsort(theta, kind="stable")  # increasing (a BTDF's angle from -z falls with theta_o)
+    theta = theta[order]
     phi = np.mod(table.axes[ph].values, 2 * np.pi)
     back = int(np.argmin(np.minimum(phi, 2 * np.pi - phi)))
     front = int(np.argmin(np.abs(phi - np.pi)))
@@ -90,7 +92,8 @@ def plane_view(table, ch):
         label = value_label(table, ti, i) + (", " + value_label(table, pi, j) if n_pi > 1 else "")
 
         def take(a, fixed=fixed):
-            return np.concatenate([a[_index(table, {**fixed, ph: back})][::-1], a[_index(table, {**fixed, ph: front})]])
+            return np.concatenate([a[_index(table, {**fixed, ph: back})][order][::-1],
+                                   a[_index(table, {**fixed, ph: front})][order]])
         series.append(Series(label, take))
     side = " from −z" if table.quantity == "btdf" else ""
     return View(x, f"θo{side} (deg), plane of incidence; < 0: light side", series)
@@ -196,7 +199,7 @@ def draw_comparison(ax, rax, table, view, styles, tag, ylabel=None):
                 continue
             colour, style, k = styles[m.name]
             scale_values.append(ym)
-            r, re = ps.residual(kind, y, e, ym)
+            r, re = ps.residual(kind, y, e, ym, None if m.z is None else ser.take(m.z))
             residuals.append(r)
             if cat:
                 dx = 0.1 * (local[m.name] + 1)

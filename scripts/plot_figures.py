@@ -79,7 +79,7 @@ def overlay_figure(label, cases):
             if np.all(np.isnan(ym)):
                 continue
             ax.plot(x, ym, color=colour, ls=style[m.name], lw=1.4, gid=f"model|{short}|{m.name}")
-            r, re = ps.residual(kind, y, e, ym)
+            r, re = ps.residual(kind, y, e, ym, None if m.z is None else ser.take(m.z))
             resid.append(r)
             rax.errorbar(x, r, re, color=colour, ls=style[m.name], lw=1.1, marker=".", ms=3, elinewidth=0.6)
             scale.append(ym)

@@ -32,7 +32,7 @@ def angle_table(t):
 def residual_norm(kind, r):
     """(norm, colourbar label) of a residual image: symmetric, range stated."""
     if kind == "z":
-        lim, label = Z_RANGE, f"z = (model − sim)/σ\nrange ±{Z_RANGE}"
+        lim, label = Z_RANGE, f"z = (sim − model)/σ\nrange ±{Z_RANGE}"
     else:
         a = np.abs(r[np.isfinite(r)])
         q = np.percentile(a, 95) if a.size else 0
@@ -150,12 +150,13 @@ def table_figure(case):
             m = _block_matrix(block[0], block[1], lambda t: t.value, chans)
             im = ax.imshow(m, aspect="auto", interpolation="nearest", cmap=_cmap("magma"), norm=log_norm(m))
             ax.set_title(f"{names}: simulation{chan_note}", loc="left")
-            fig.colorbar(im, ax=ax, pad=0.01, fraction=0.03).set_label(ps_unit(ref), fontsize=8)
+            unit = ps_unit(ref) if sum(t is not None for t in block) == 1 else f"f_r | f_t ({ref.unit})"
+            fig.colorbar(im, ax=ax, pad=0.01, fraction=0.03).set_label(unit, fontsize=8)
         else:
             def pick(t, part):
                 if k >= len(t.models):
                     return None
-                r, _ = ps.residual(ps.residual_kind([t.models[k]]), t.value, t.stderr, t.models[k].values)
+                r, _ = ps.residual(ps.residual_kind([t.models[k]]), t.value, t.stderr, t.models[k].values, t.models[k].z)
                 return r if part == "r" else t.models[k]
             models = [pick(t, "m") for t in block if t is not None]
             kind = ps.residual_kind([m for m in models if m is not None])
@@ -168,7 +169,11 @@ def table_figure(case):
         ax.set_ylabel("θi" + (", φi" if len(ref.axes[ref.axis("phi_i")].values) > 1 else ""))
     hemis = " | ".join(h for h, t in zip(("upper hemisphere (BRDF)", "lower hemisphere (BTDF, θo from +z)"), blocks[0])
                        if t is not None)
-    axs[-1, 0].set_xlabel(f"outgoing cells: θo (deg) groups, φ = 0…360° within each; {hemis}")
+    ph = blocks[0][0] or blocks[0][1]
+    phi_edges = ph.axes[ph.axis("phi")].edges
+    phi_span = np.degrees(phi_edges[-1] if phi_edges is not None else ph.axes[ph.axis("phi")].values[-1])
+    phi_text = "φ = 0…180° (folded)" if phi_span <= 180.5 else "φ = 0…360°"
+    axs[-1, 0].set_xlabel(f"outgoing cells: θo (deg) groups, {phi_text} within each\n{hemis}")
     fig.suptitle(f"{case.name}: whole BRDF/BTDF tables (grey: no significant simulated value)")
     return fig
 

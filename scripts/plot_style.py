@@ -49,15 +49,17 @@ def residual_kind(models):
     return "z" if models and all(m.exact for m in models) else "rel"
 
 
-RESIDUAL_LABEL = {"z": "z = (model − sim) / σ", "rel": "model / sim − 1 (%)"}
+RESIDUAL_LABEL = {"z": "z = (sim − model) / σ", "rel": "model / sim − 1 (%)"}
 
 
-def residual(kind, sim, se, model):
-    """Residual and its 1-sigma error bar. rel is left out where the simulation is not
-    significantly non-zero (|sim| <= 2 σ): the ratio would be noise."""
+def residual(kind, sim, se, model, z=None):
+    """Residual and its 1-sigma error bar. z: the report's z where given (results.json:
+    Student's t of the batches mapped to a normal quantile, with the model's own noise),
+    else (sim - model) / σ. rel is left out where the simulation is not significantly
+    non-zero (|sim| <= 2 σ): the ratio would be noise."""
     with np.errstate(divide="ignore", invalid="ignore"):
         if kind == "z":
-            r = np.where(se > 0, (model - sim) / se, np.nan)
+            r = z if z is not None else np.where(se > 0, (sim - model) / se, np.nan)
             return r, None
         ok = np.abs(sim) > 2 * se
         r = np.where(ok, 100 * (model / sim - 1), np.nan)

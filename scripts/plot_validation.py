@@ -2,12 +2,16 @@
 """Plots of a validation run, under OUTDIR/plots/:
 
   <case>.png           the 1-D comparisons: simulation (points, 1-sigma bars), models
-                       (lines), and under each a residual panel (z or model/sim - 1)
+                       (lines), and under each a residual panel: for exact models the
+                       report's z per cell (results.json), else model/sim - 1
   <case>_table.png     BRDF/BTDF cases: the whole table as an image (rows: incoming
                        directions, columns: outgoing cells, upper | lower hemisphere)
   <case>_lobes.png     BRDF/BTDF cases: polar lobes at a few theta_i: simulation, model,
-                       and the residual on a diverging scale
+                       and the residual on a diverging scale (of the channels' mean: z is
+                       (sim - model) / sigma there, not the report's per-channel z)
   figure_<slug>.png    each paper figure shared by several cases: their curves overlaid
+  plots.json           the plots above and the results.json they were made from
+                       (scripts/plot_manifest.py: report.py shows only these)
 
 Reads OUTDIR/results.json (checks, model values per cell) and the simulated tables
 OUTDIR/tables/<case>.h5. Needs Debian's python3-matplotlib, python3-h5py, python3-numpy.
@@ -23,6 +27,7 @@ import warnings
 try:
     import plot_style as ps
     import plot_curves
+    import plot_manifest
     import plot_figures
     import plot_maps
     import validation_data
@@ -55,14 +60,21 @@ def main():
     quiet = "--quiet" in argv
     jobs = min(os.cpu_count() or 1, 4)
     if "--jobs" in argv:
-        jobs = int(argv[argv.index("--jobs") + 1])
-        del argv[argv.index("--jobs"):argv.index("--jobs") + 2]
+        at = argv.index("--jobs")
+        value = argv[at + 1] if at + 1 < len(argv) else ""
+        if not value.isdigit() or int(value) < 1:
+            sys.exit(f"plot_validation.py: --jobs needs a whole number of processes >= 1, not \"{value}\"")
+        jobs = int(value)
+        del argv[at:at + 2]
     args = [a for a in argv if not a.startswith("--")]
     if len(args) != 1:
         sys.exit(__doc__)
     out = args[0]
     start = time.time()
-    results = validation_data.load_results(out)
+    try:
+        results = validation_data.load_results(out)
+    except validation_data.RunError as e:
+        sys.exit(f"plot_validation.py: {e}")
     os.makedirs(os.path.join(out, "plots"), exist_ok=True)
     work = [(out, c) for c in results["cases"]]
     if jobs > 1 and len(work) > 1:
@@ -71,6 +83,7 @@ def main():
     else:
         written = [f for w in work for f in plot_case(w)]
     written += plot_figures.write_figures(out, results)
+    plot_manifest.write(out, written)
     if not quiet:
         print(f"plot_validation.py: {len(written)} plots in {os.path.join(out, 'plots')} "
               f"({time.time() - start:.1f} s)", file=sys.stderr)

@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Renders OUTDIR/report.html from a validation run, without simulating.
 
-Reads OUTDIR/results.json (written by `mcref validate`), the plots present
-under OUTDIR/plots/ (scripts/plot_validation.py) and the list of the papers'
+Reads OUTDIR/results.json (written by `mcref validate`), the plots under
+OUTDIR/plots/ that scripts/plot_validation.py made from that results.json
+(OUTDIR/plots/plots.json, scripts/plot_manifest.py) and the list of the papers'
 figures no case reproduces (validate/figures_not_reproduced.toml). The page:
 headline counts, one summary row per model (scripts/model_summary.py) with the
 per-check table behind it, SpongeCake's multiple-scattering approximation when
@@ -26,6 +27,7 @@ except ImportError as e:  # pragma: no cover
     sys.exit(f"report.py: missing module ({e}); run scripts/setup.sh and use /usr/bin/python3")
 
 from figure_slug import figure_slug
+import plot_manifest
 from model_summary import STATUSES, status_counts, summarize
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -146,12 +148,23 @@ def render(out_dir, not_reproduced_path=NOT_REPRODUCED):
         fail(f"{path}: {e.strerror} (run `mcref validate SUITE -o {out_dir}` first)")
     except json.JSONDecodeError as e:
         fail(f"{path}: not valid JSON ({e})")
+    if not isinstance(results, dict):
+        fail(f"{path}: not a JSON object (not a results.json of mcref validate?)")
     for key in ("title", "significance", "cases"):
         if key not in results:
             fail(f"{path}: key \"{key}\" is missing (not a results.json of mcref validate?)")
+    try:
+        return render_results(out_dir, results, not_reproduced_path)
+    except (KeyError, TypeError, AttributeError, jinja2.UndefinedError) as e:
+        fail(f"{path}: not a results.json of this mcref ({type(e).__name__}: {e})")
+
+
+def render_results(out_dir, results, not_reproduced_path):
     cases = results["cases"]
-    plot_dir = os.path.join(out_dir, "plots")
-    plot_files = {f for f in os.listdir(plot_dir) if f.endswith(".png")} if os.path.isdir(plot_dir) else set()
+    # Only the plots made from this results.json (scripts/plot_manifest.py).
+    plot_files, why = plot_manifest.read(out_dir)
+    if why:
+        print(f"report.py: warning: no plots shown: {why}", file=sys.stderr)
     plots = case_plots([c["name"] for c in cases], plot_files)
     checks = [dict(c, case=case["name"], figure=case["figure"]) for case in cases for c in case["checks"]]
     # Checks whose model is a numerical integral by the adaptive cell rule (rule_accuracy).

@@ -24,6 +24,7 @@ class Model:
     name: str
     exact: bool
     values: np.ndarray  # shaped like the table; NaN where the model predicts nothing
+    z: np.ndarray = None  # the report's z per cell (validate/metrics.h), shaped like the table; NaN where not compared
 
 
 @dataclass
@@ -88,13 +89,35 @@ def load_case(out, case):
                 tables[name] = load_table(h5[name], name)
             t = tables[name]
             values = np.array([np.nan if v is None else v for v in chk["model_values"]], dtype=float)
-            t.models.append(Model(chk["model"], bool(chk.get("exact", False)), values.reshape(t.value.shape)))
+            z = chk.get("z")  # (results.json of older mcref: none)
+            z = np.array([np.nan if v is None else v for v in z], dtype=float).reshape(t.value.shape) if z else None
+            t.models.append(Model(chk["model"], bool(chk.get("exact", False)), values.reshape(t.value.shape), z))
     return Case(case["name"], case.get("figure", ""), list(tables.values()))
 
 
+class RunError(Exception):
+    """An OUTDIR that is not a readable validation run (one line, naming the file)."""
+
+
 def load_results(out):
-    with open(os.path.join(out, "results.json")) as f:
-        return json.load(f)
+    """OUTDIR/results.json, checked before anything is plotted: a JSON object
+    with a list of cases, each with its name, table file (present) and checks."""
+    path = os.path.join(out, "results.json")
+    try:
+        with open(path) as f:
+            results = json.load(f)
+    except OSError as e:
+        raise RunError(f"{path}: {e.strerror} (run `mcref validate SUITE -o {out}` first)")
+    except ValueError as e:
+        raise RunError(f"{path}: not valid JSON ({e})")
+    if not isinstance(results, dict) or not isinstance(results.get("cases"), list):
+        raise RunError(f"{path}: not a results.json of mcref validate (no list \"cases\")")
+    for i, case in enumerate(results["cases"]):
+        if not isinstance(case, dict) or not all(k in case for k in ("name", "tables", "checks")):
+            raise RunError(f"{path}: cases.{i} lacks name, tables or checks (not a results.json of mcref validate?)")
+        if not os.path.isfile(os.path.join(out, case["tables"])):
+            raise RunError(f"{os.path.join(out, case['tables'])}: missing (the tables of case \"{case['name']}\")")
+    return results
 
 
 def identically_zero(sim, models):

@@ -69,6 +69,8 @@ std::string results_json(const Suite& suite, const std::vector<CaseResult>& resu
           << ", \"worst_cell\": " << a.worst_cell << "}";
       j << ",\n        \"model_values\": [";
       for (std::size_t v = 0; v < r.model_values.size(); ++v) j << (v ? ", " : "") << json_number(r.model_values[v]);
+      j << "],\n        \"z\": [";
+      for (std::size_t v = 0; v < m.z.size(); ++v) j << (v ? ", " : "") << json_number(m.z[v]);
       j << "]}" << (i + 1 < c.checks.size() ? "," : "") << "\n";
     }
     j << "     ],\n     \"error_budget\": [";

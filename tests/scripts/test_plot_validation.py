@@ -173,3 +173,25 @@ def test_edges_from_cf_bounds_and_from_older_edges(tmp_path):
         for g in ("a", "b"):
             assert np.array_equal(validation_data.edges_of(f[g], "phi"), [0.0, 1.0, 3.0])
         assert validation_data.edges_of(f["c"], "phi") is None
+
+
+def test_plane_of_incidence_runs_left_to_right_for_a_btdf():
+    """A BTDF's angle from -z, 180 - theta_o, falls as theta_o rises: the plane view
+    sorts it, so that the light side runs -90..0 and the mirror side 0..90 (the
+    lines jumped from -88 to +88 across the panel)."""
+    phi = np.radians([0.0, 90.0, 180.0])
+    ax = lambda n, v: validation_data.Axis(n, np.asarray(v, dtype=float), "rad")
+    value = np.arange(4 * 3, dtype=float).reshape(1, 1, 4, 3)  # theta_i, phi_i, theta_o, phi
+    for quantity, theta_o_deg, angles in (("btdf", [100.0, 120.0, 140.0, 160.0], [80.0, 60.0, 40.0, 20.0]),
+                                          ("brdf", [10.0, 30.0, 50.0, 70.0], [10.0, 30.0, 50.0, 70.0])):
+        angles = np.array(angles)
+        axes = [ax("theta_i", [0.3]), ax("phi_i", [0.0]), ax("theta_o", np.radians(theta_o_deg)), ax("phi", phi)]
+        table = validation_data.Table("t", quantity, "1/sr", axes, value, value)
+        view = plot_curves.plane_view(table, 0)
+        assert np.all(np.diff(view.x) > 0), (quantity, view.x)
+        assert np.allclose(np.abs(view.x), np.concatenate([np.sort(angles)[::-1], np.sort(angles)]))
+        y = view.series[0].take(value)
+        # Each x keeps its own cell: the mirror side (phi = 180 deg, index 2) at theta_o's own angle.
+        for xi, yi in zip(view.x, y):
+            k = int(np.argmin(np.abs(angles - abs(xi))))
+            assert yi == value[0, 0, k, 0 if xi < 0 else 2], (quantity, xi, yi)

@@ -20,6 +20,7 @@ SCRIPTS = os.path.join(SOURCE_DIR, "scripts")
 PYTHON = "/usr/bin/python3"
 sys.path.insert(0, SCRIPTS)
 
+import plot_manifest  # noqa: E402
 from figure_slug import figure_slug  # noqa: E402
 
 
@@ -54,6 +55,10 @@ def copy_of(run_dir, tmp_path):
 def results(out):
     with open(os.path.join(out, "results.json")) as f:
         return json.load(f)
+
+
+def first_png(plots):
+    return sorted(f for f in os.listdir(plots) if f.endswith(".png"))[0]
 
 
 def page(out):
@@ -105,19 +110,74 @@ def test_relative_error_is_coloured_for_approximate_models_only(run_dir):
 
 def test_every_plot_of_a_case_is_embedded_and_figure_plots_are_indexed(copy_of):
     plots = os.path.join(copy_of, "plots")
-    first = sorted(os.listdir(plots))[0]
+    first = first_png(plots)
     case = results(copy_of)["cases"][0]
     shutil.copy(os.path.join(plots, first), os.path.join(plots, case["name"] + "_lobes.png"))
     figure_plot = f"figure_{figure_slug(case['figure'])}.png"
     shutil.copy(os.path.join(plots, first), os.path.join(plots, figure_plot))
+    pngs = [f for f in os.listdir(plots) if f.endswith(".png")]
+    plot_manifest.write(copy_of, pngs)  # as plot_validation.py records what it made
     text = render(copy_of)
-    for f in os.listdir(plots):
+    for f in pngs:
         if f != figure_plot:
             assert f'<img src="plots/{f}"' in text, f
     index = text.split('id="figures"')[1].split('id="not-reproduced"')[0]
     assert f'<img src="plots/{figure_plot}"' in index
     section = text.split(f'id="case-{case["name"]}"')[1].split("<h3")[0]
     assert f'<img src="plots/{case["name"]}_lobes.png"' in section
+
+
+def test_only_the_plots_made_from_this_run_are_shown(copy_of):
+    # A later `mcref validate --case X` into the same OUTDIR leaves the other
+    # cases' plots (and earlier runs' overlays) in plots/: a plot whose name
+    # starts with X's was embedded in X's section, and a stale overlay in the index.
+    plots = os.path.join(copy_of, "plots")
+    case = results(copy_of)["cases"][0]
+    shutil.copy(os.path.join(plots, first_png(plots)), os.path.join(plots, case["name"] + "_other_case.png"))
+    text = render(copy_of)
+    assert f'plots/{case["name"]}_other_case.png' not in text
+    own = [f for f in plot_manifest.read(copy_of)[0] if f.startswith(case["name"])]
+    assert own and all(f'<img src="plots/{f}"' in text for f in own)
+    # results.json changed since the plots were made (a new run): none is shown, and the report says why.
+    with open(os.path.join(copy_of, "results.json"), "a") as f:
+        f.write("\n")
+    code, _, err = run(PYTHON, os.path.join(SCRIPTS, "report.py"), copy_of)
+    assert code == 0, err
+    assert "no plots shown: the plots in" in err and "made from another results.json" in err
+    assert '<img src="plots/' not in page(copy_of)
+
+
+@pytest.mark.parametrize("content, message", [
+    (None, "results.json: No such file or directory"),
+    ('{"title": "x", ', "results.json: not valid JSON"),
+    ("[1, 2]", "not a JSON object"),
+    ("42", "not a JSON object"),
+    ('{"title": "x", "significance": 0.001, "cases": [{"name": "c"}]}', "not a results.json of this mcref"),
+])
+def test_report_refuses_what_is_not_a_run_in_one_line(tmp_path, content, message):
+    if content is not None:
+        (tmp_path / "results.json").write_text(content)
+    code, _, err = run(PYTHON, os.path.join(SCRIPTS, "report.py"), str(tmp_path))
+    assert code != 0 and "Traceback" not in err, err
+    assert len(err.strip().splitlines()) == 1 and message in err, err
+    assert not (tmp_path / "report.html").exists()
+
+
+@pytest.mark.parametrize("content, args, message", [
+    (None, [], "results.json: No such file or directory"),
+    ('{"title": "x", ', [], "results.json: not valid JSON"),
+    ("[1, 2]", [], 'no list "cases"'),
+    ('{"cases": [{"name": "c", "tables": "tables/c.h5", "checks": []}]}', [], "tables/c.h5: missing"),
+    ('{"cases": []}', ["--jobs"], "--jobs needs a whole number"),
+    ('{"cases": []}', ["--jobs", "0"], "--jobs needs a whole number"),
+])
+def test_plot_validation_refuses_what_is_not_a_run_in_one_line(tmp_path, content, args, message):
+    if content is not None:
+        (tmp_path / "results.json").write_text(content)
+    code, _, err = run(PYTHON, os.path.join(SCRIPTS, "plot_validation.py"), str(tmp_path), *args)
+    assert code != 0 and "Traceback" not in err, err
+    assert len(err.strip().splitlines()) == 1 and message in err, err
+    assert not (tmp_path / "plots").exists()
 
 
 def test_figure_index_lists_cases_and_the_figures_not_reproduced(run_dir):
@@ -202,7 +262,7 @@ def test_chromium_loads_the_report_without_errors(copy_of, tmp_path):
 def test_chromium_probe_sees_errors(copy_of, tmp_path):
     # The probe is not blind: a broken image and a script error are reported.
     plots = os.path.join(copy_of, "plots")
-    broken = sorted(os.listdir(plots))[0]
+    broken = first_png(plots)
     with open(os.path.join(plots, broken), "wb") as f:
         f.write(b"not a png")
     text = page(copy_of).replace("</body>", "<script>undefined_function();</script></body>")
@@ -246,7 +306,7 @@ def spongecake_fixture(out, png_source):
 def test_spongecake_section_renders_the_summary(copy_of, tmp_path):
     assert 'id="spongecake"' not in page(copy_of)  # no summary, no section
     plots = os.path.join(copy_of, "plots")
-    spongecake_fixture(copy_of, os.path.join(plots, sorted(os.listdir(plots))[0]))
+    spongecake_fixture(copy_of, os.path.join(plots, first_png(plots)))
     text = render(copy_of)
     section = text.split('id="spongecake"')[1].split('id="figures"')[0]
     flat = re.sub(r"\s+", " ", html.unescape(re.sub(r"<[^>]+>", " ", section)))
@@ -283,7 +343,7 @@ def test_status_table_has_the_spongecake_block(copy_of):
     code, out, err = run(PYTHON, os.path.join(SCRIPTS, "status_table.py"), copy_of)
     assert code == 0 and "SpongeCake" not in out, err
     plots = os.path.join(copy_of, "plots")
-    spongecake_fixture(copy_of, os.path.join(plots, sorted(os.listdir(plots))[0]))
+    spongecake_fixture(copy_of, os.path.join(plots, first_png(plots)))
     code, out, err = run(PYTHON, os.path.join(SCRIPTS, "status_table.py"), copy_of)
     assert code == 0, err
     rows = [l for l in out.splitlines() if l.startswith("| `one_layer`") or l.startswith("| `paper_two_layers`")]
@@ -322,3 +382,22 @@ def test_model_rule_accuracy_is_reported_and_a_short_rule_flagged(copy_of):
     assert f"{case}: {other['model']} on <code>{html.escape(other['table'])}</code>, 2\nof 10, up to 7.9e-07" in p
     assert '<td class="num short">7.9e-07</td>' in p and f'<td class="num">{worst}</td>' in p
     assert "2 stopped above the target, the worst at model value 4" in p
+
+
+def test_results_hold_each_cells_z_and_the_plots_read_it(run_dir):
+    # The plots' residual panels show the report's z (they drew (model - sim)/sigma,
+    # without the Student-t mapping: another sign, and larger with few batches).
+    import validation_data
+    compared = 0
+    for case in results(run_dir)["cases"]:
+        loaded = validation_data.load_case(run_dir, case)
+        for chk in case["checks"]:
+            assert len(chk["z"]) == len(chk["model_values"]), chk["model"]
+            z = [abs(v) for v in chk["z"] if v is not None]
+            if chk["max_abs_z"] is None or not z:
+                continue
+            assert abs(max(z) - chk["max_abs_z"]) <= 1e-8 * max(1.0, chk["max_abs_z"]), chk["model"]
+            model = next(m for t in loaded.tables for m in t.models if m.name == chk["model"] and t.name == chk["table"])
+            assert model.z is not None and model.z.shape == model.values.shape
+            compared += 1
+    assert compared >= 1
