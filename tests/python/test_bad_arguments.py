@@ -213,3 +213,9 @@ def test_paths_may_be_pathlib_paths(tmp_path):
 def test_grain_field_parameters_outside_the_models_domain_are_refused(call, key):
     with pytest.raises(mcref.ConfigError, match=f"key '{key}': .* is out of range"):
         eval("mcref.micrograin." + call)
+
+
+def test_a_table_file_iterates_over_its_names():
+    # Before: list(TableFile) raised TypeError, while `in` and [name] took names.
+    t = mcref.simulate(CFG, seed=1, threads=1)
+    assert list(t) == t.names and all(name in t for name in t)

@@ -176,6 +176,11 @@ void bind_tables(py::module_& m) {
       .def("__getitem__", &find_table, py::return_value_policy::copy)
       .def("__contains__", [](const TableFile& f, const std::string& name) { return f.find(name) != nullptr; })
       .def("__len__", [](const TableFile& f) { return f.tables.size(); })
+      .def("__iter__", [](const TableFile& f) {  // the names, as a dict's keys (`in` and [name] take names)
+        std::vector<std::string> n;
+        for (const Table& t : f.tables) n.push_back(t.name);
+        return py::iter(py::cast(n));
+      })
       .def("__repr__", [](const TableFile& f) {
         std::string s = "<mcref.TableFile:";
         for (const Table& t : f.tables) s += " " + t.name;
