@@ -219,3 +219,16 @@ def test_a_table_file_iterates_over_its_names():
     # Before: list(TableFile) raised TypeError, while `in` and [name] took names.
     t = mcref.simulate(CFG, seed=1, threads=1)
     assert list(t) == t.names and all(name in t for name in t)
+
+
+def test_layers_and_written_seeds_name_what_is_wrong(tmp_path):
+    # Before: "key 'layer': layer thickness must be >= 0" without the value, and seed=-1 a pybind TypeError.
+    with pytest.raises(mcref.ConfigError, match=r"key 'thickness': = -0.5 must be >= 0"):
+        mcref.sggx.Layer.isotropic(-0.5, 1.0)
+    with pytest.raises(mcref.ConfigError, match=r"key 'density': = -2 is out of range"):
+        mcref.sggx.Layer.hg(1.0, -2.0, 0.3)
+    assert mcref.sggx.Layer.isotropic(float("inf"), 1.0, 0.5).optical_thickness == float("inf")
+    table = mcref.simulate(CFG, seed=1, threads=1)["tau_plus"]
+    with pytest.raises(mcref.ConfigError, match=r"key 'seed': = -1 must be an integer"):
+        mcref.write_tables(tmp_path / "x.h5", [table], seed=-1)
+    assert not (tmp_path / "x.h5").exists()

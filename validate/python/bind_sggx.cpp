@@ -26,6 +26,14 @@ Vec3 axis_vector(const char* name, const std::array<double, 3>& v) {
 
 const Range kUnit{0, 1, false, false};
 
+// What every layer takes, checked with the value shown (thickness may be infinite: a half-space).
+void check_layer(double thickness, double density, double albedo) {
+  if (!(thickness >= 0))
+    throw ConfigError("<python>", "thickness", "= " + exact_text(thickness) + " must be >= 0 (inf: a half-space)");
+  check_argument("density", density, {0, INFINITY, false, true});
+  check_argument("albedo", albedo, kUnit);
+}
+
 // Model factories throw std::invalid_argument: one line for Python too.
 template <class F>
 auto checked(const std::string& key, F f) {
@@ -101,18 +109,18 @@ void bind_sggx(py::module_& root) {
 
   py::class_<sggx::Layer>(m, "Layer", "One homogeneous SpongeCake layer, one colour channel.")
       .def_static("sggx", [](double thickness, double density, const sggx::Sggx& s, double albedo, double f0) {
-        check_argument("albedo", albedo, kUnit);
+        check_layer(thickness, density, albedo);
         check_argument("f0", f0, kUnit);
         return checked("layer", [&] { return sggx::sggx_layer(thickness, density, s, albedo, f0); });
       }, py::arg("thickness"), py::arg("density"), py::arg("sggx"), py::arg("albedo") = 1.0, py::arg("f0") = 1.0,
                   "Specular SGGX flakes, F = albedo Schlick(f0, |wi.h|); extinction density sigma(w).")
       .def_static("hg", [](double thickness, double density, double g, double albedo) {
-        check_argument("albedo", albedo, kUnit);
+        check_layer(thickness, density, albedo);
         check_argument("g", g, {-1, 1, true, true});
         return checked("layer", [&] { return sggx::hg_layer(thickness, density, g, albedo); });
       }, py::arg("thickness"), py::arg("density"), py::arg("g"), py::arg("albedo") = 1.0)
       .def_static("isotropic", [](double thickness, double density, double albedo) {
-        check_argument("albedo", albedo, kUnit);
+        check_layer(thickness, density, albedo);
         return checked("layer", [&] { return sggx::isotropic_layer(thickness, density, albedo); });
       }, py::arg("thickness"), py::arg("density"), py::arg("albedo") = 1.0)
       .def_property_readonly("optical_thickness", &sggx::Layer::optical_thickness);

@@ -203,15 +203,15 @@ void bind_tables(py::module_& m) {
         "`mcref validate` read; written to a temporary name and renamed, never half-written.");
 
   m.def("write_tables", [](const std::filesystem::path& p, const std::vector<Table>& tables, const std::string& config,
-                           std::uint64_t seed, const std::string& command_line) {
+                           py::object seed, const std::string& command_line) {
     const std::string path = p.string();
     check_output_file(path, {}, "path");
     TableFile f;
     f.tables = tables;
-    f.provenance = make_provenance(config, "<python>", seed, command_line);
+    f.provenance = make_provenance(config, "<python>", integer_argument("seed", seed, UINT64_MAX), command_line);
     py::gil_scoped_release release;
     write_table_file(path, f);
-  }, py::arg("path"), py::arg("tables"), py::arg("config") = "", py::arg("seed") = 0,
+  }, py::arg("path"), py::arg("tables"), py::arg("config") = "", py::arg("seed") = py::int_(0),
         py::arg("command_line") = "python: mcref.write_tables",
         "Writes a list of Tables with new provenance (config text, seed, this mcref build, now).");
 }
