@@ -11,7 +11,6 @@
 #include <cstdint>
 #include <string>
 
-
 #include "models/core/vec.h"
 #include "models/micrograin/grain_field.h"
 #include "sim/experiment/config_error.h"
@@ -45,8 +44,6 @@ py::object vectorized(F&& f, const O&... objects) {
   return py::vectorize(std::forward<F>(f))(numbers(objects)...);
 }
 
-// A scalar argument checked against its allowed range: a ConfigError naming
-// the argument, its value (every digit) and the range, as the CLI's.
 // A non-negative integer argument (a Python or numpy integer) at most `hi`; a
 // float, a bool or anything out of range is a ConfigError naming the argument.
 inline std::uint64_t integer_argument(const char* name, const py::handle& v, std::uint64_t hi) {
@@ -74,6 +71,8 @@ inline int whole_argument(const char* name, double value, int lo, int hi) {
   return static_cast<int>(value);
 }
 
+// A scalar argument checked against its allowed range: a ConfigError naming
+// the argument, its value (every digit) and the range, as the CLI's.
 inline void check_argument(const char* name, double value, const Range& allowed) {
   if (!allowed.contains(value))
     throw ConfigError("<python>", name, "= " + exact_text(value) + " is out of range; allowed " + allowed.text());
