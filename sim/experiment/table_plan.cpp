@@ -118,9 +118,10 @@ void check_table_names(const Experiment& ex, const std::vector<std::string>& nam
 }
 
 void check_table_layout(const Experiment& ex, const Table& table, const std::string& file, const std::string& key) {
-  check_table_names(ex, {table.name}, file, key);
   const std::vector<Table> outline = table_outline(ex);
-  const Table& o = *std::find_if(outline.begin(), outline.end(), [&](const Table& t) { return t.name == table.name; });
+  const auto found = std::find_if(outline.begin(), outline.end(), [&](const Table& t) { return t.name == table.name; });
+  if (found == outline.end()) check_table_names(ex, {table.name}, file, key);  // throws, naming the tables it writes
+  const Table& o = *found;
   const auto layout = [](const Table& t) {
     std::string s = t.quantity + " over (";
     for (std::size_t i = 0; i < t.axes.size(); ++i)
