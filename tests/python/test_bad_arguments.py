@@ -215,6 +215,41 @@ def test_grain_field_parameters_outside_the_models_domain_are_refused(call, key)
         eval("mcref.micrograin." + call)
 
 
+@pytest.mark.parametrize("call, key", [
+    # What each gave before (they took any value): the numbers of a formula outside its domain.
+    ("lambert_sphere.single_scattering_eq10(2.0, 0.5, 0.5, 0.0)", "c"),  # 0.424
+    ("lambert_sphere.deon_fast_eq41(0.5, 1.5, 0.5, 0.0)", "mu_i"),  # 0.0529
+    ("lambert_sphere.deon_brdf(0.5, 0.5, np.array([0.5, 1.5]), 0.0)", "mu_o"),  # 0.0498
+    ("lambert_sphere.phase_eq1(1.5)", "mu"),  # 0
+    ("lambert_sphere.albedo_from_kd(1.2)", "kd"),  # nan
+    ("lambert_sphere.kd_eq40(-0.2)", "c"),  # -0.0545
+    ("lambert_sphere.h0_at_infinity(1.5)", "c"),  # inf
+    ("lambert_sphere.h_exact(0, 1.5, 0.5)", "c"),  # a ValueError from the quadrature
+    ("radiative_transfer.chandrasekhar_isotropic(0.5, -0.2, 0.5)", "mu_i"),  # 0
+    ("radiative_transfer.h_isotropic_table(0.5, 1.5)", "mu"),  # 1.286, extrapolated
+    ("radiative_transfer.h_isotropic(1.5, 0.5)", "albedo"),  # a ValueError without the value
+    ("micrograin.p1_eq10(-1.0, 1.0)", "r"),  # -0.272
+    ("micrograin.ggx_ndf(-0.3, 0.2)", "alpha"),  # 1.81
+    ("micrograin.g_dist(0.5, 1.0, 1.0, 0.3, 0.0, 1.5)", "h"),  # 1
+    ("micrograin.projected_cap_area(0.3, -2.0)", "h"),  # -9.42
+    ("sggx.hg_phase(1.5, 0.3, 0.0, 0.4, 0.0)", "g"),  # -0.0064
+    ("sggx.spongecake_ss_substrate([mcref.sggx.Layer.isotropic(1.0, 1.0)], 2.0, 0.3, 0.0, 0.4, 3.1)",
+     "substrate_albedo"),  # 0.113
+])
+def test_model_arguments_outside_their_domain_are_refused(call, key):
+    with pytest.raises(mcref.ConfigError, match=f"key '{key}': = .* is out of range; allowed"):
+        eval("mcref." + call)
+
+
+def test_model_arguments_at_the_ends_of_their_domain_are_taken():
+    # The checks refuse only what is outside: the closed ends give the formulas' values.
+    ls, rt = mcref.lambert_sphere, mcref.radiative_transfer
+    assert ls.phase_eq1(-1.0) > 0 and ls.phase_eq1(1.0) == 0.0
+    assert np.isfinite(ls.single_scattering_eq10(1.0, 0.0, 1.0, 0.0))
+    assert rt.h_isotropic(1.0, 0.0) == pytest.approx(1.0, abs=1e-12)
+    assert rt.h_isotropic_table(0.0, np.array([0.0, 1.0])) == pytest.approx([1.0, 1.0], abs=1e-12)
+
+
 def test_a_table_file_iterates_over_its_names():
     # Before: list(TableFile) raised TypeError, while `in` and [name] took names.
     t = mcref.simulate(CFG, seed=1, threads=1)

@@ -23,6 +23,11 @@ namespace {
 
 mg::GrainField iso(double tau0, double beta) { return mg::isotropic_field(tau0_in(tau0), beta_in(beta)); }
 
+const Range kPositive{0, INFINITY, true, true};  // densities, radii, roughness
+const Range kLength{0, INFINITY, false, true};   // distances (0 allowed)
+// A unit-space height h in [0, 1] (vNDF Eq. 3-5: the cap above h).
+double height_in(double h) { return argument("h", h, kUnitInterval); }
+
 mg::LambdaMethod lambda_method(const std::string& s) {
   if (s == "series4") return mg::LambdaMethod::Series4;
   if (s == "quadrature") return mg::LambdaMethod::Quadrature;
@@ -52,10 +57,14 @@ void bind_micrograin(py::module_& root) {
       "broadcast over numpy arrays.");
 
   // LRPB23 Sec. 4.1
-  m.def("p1_eq10", py::vectorize(&mg::closest_grain_distance_pdf), py::arg("r"), py::arg("rho"),
+  m.def("p1_eq10", py::vectorize([](double r, double rho) {
+          return mg::closest_grain_distance_pdf(argument("r", r, kLength), argument("rho", rho, kPositive));
+        }), py::arg("r"), py::arg("rho"),
         "LRPB23 Eq. 8 (suite model p1_eq10): p1(r) = 2 pi rho r exp(-pi rho r^2), density of the\n"
         "distance r to the closest grain centre (rho centres per unit area; r in the same unit).");
-  m.def("filling_factor", py::vectorize(&mg::filling_factor), py::arg("rho"), py::arg("r_x"), py::arg("r_y"),
+  m.def("filling_factor", py::vectorize([](double rho, double rx, double ry) {
+          return mg::filling_factor(argument("rho", rho, kLength), argument("r_x", rx, kPositive), argument("r_y", ry, kPositive));
+        }), py::arg("rho"), py::arg("r_x"), py::arg("r_y"),
         "LRPB23 Eq. 13: tau0 = 1 - exp(-pi rho r_x r_y).");
 
   // NDF, LRPB23 Sec. 4.2
@@ -85,7 +94,7 @@ void bind_micrograin(py::module_& root) {
           return mg::ndf_cdf_theta(tau0_in(tau0), beta_in(beta), theta_m);
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta_m"),
         "LRPB23 Eq. 19: CDF of theta_m under D(m) cos theta_m.");
-  m.def("ggx_ndf", py::vectorize([](double alpha, double theta_m) { return mg::ggx_ndf(alpha, theta_m); }),
+  m.def("ggx_ndf", py::vectorize([](double alpha, double theta_m) { return mg::ggx_ndf(argument("alpha", alpha, kPositive), theta_m); }),
         py::arg("alpha"), py::arg("theta_m"), "GGX NDF alpha^2 / (pi (alpha^2 cos^2 + sin^2)^2), 1/sr.");
 
   // Visible filling factor, LRPB23 Sec. 5.1
@@ -112,15 +121,15 @@ void bind_micrograin(py::module_& root) {
 
   // Height-correlated masking (vNDF Eq. 3-5, 9-10)
   m.def("tau_height_sigma", py::vectorize([](double tau0, double bx, double by, double theta_i, double phi_i, double h) {
-          return mg::filling_factor_at_height(grain_field(tau0, bx, by), spherical_direction(theta_i, phi_i), h);
+          return mg::filling_factor_at_height(grain_field(tau0, bx, by), spherical_direction(theta_i, phi_i), height_in(h));
         }), py::arg("tau0"), py::arg("beta_x"), py::arg("beta_y"), py::arg("theta_i"), py::arg("phi_i"), py::arg("h"),
         "vNDF Eq. 4/10 (suite model tau_height_sigma): tau(i, h) = 1 - exp(-rho' sigma(i', h)),\n"
         "rho' = -ln(1 - tau0)/pi, h the unit-space height in [0, 1]; tau(i, 0) = tau+(i).");
   m.def("g_dist", py::vectorize([](double tau0, double bx, double by, double theta_i, double phi_i, double h) {
-          return mg::distant_masking(grain_field(tau0, bx, by), spherical_direction(theta_i, phi_i), h);
+          return mg::distant_masking(grain_field(tau0, bx, by), spherical_direction(theta_i, phi_i), height_in(h));
         }), py::arg("tau0"), py::arg("beta_x"), py::arg("beta_y"), py::arg("theta_i"), py::arg("phi_i"), py::arg("h"),
         "vNDF Eq. 3/9: height-correlated masking G_dist(i, h) = exp(-rho' sigma_s(i', h)).");
-  m.def("projected_cap_area", py::vectorize([](double theta_i, double h) { return mg::projected_cap_area(theta_i, h); }),
+  m.def("projected_cap_area", py::vectorize([](double theta_i, double h) { return mg::projected_cap_area(theta_i, height_in(h)); }),
         py::arg("theta_i"), py::arg("h"),
         "vNDF Eq. 5: sigma(i, h) = pi (1 - h^2) + sigma_s(i, h), unit-space cap (theta_i unit-space).");
 

@@ -24,14 +24,14 @@ Vec3 axis_vector(const char* name, const std::array<double, 3>& v) {
   return a;
 }
 
-const Range kUnit{0, 1, false, false};
+const Range kG{-1, 1, true, true};  // Henyey-Greenstein asymmetry
 
 // What every layer takes, checked with the value shown (thickness may be infinite: a half-space).
 void check_layer(double thickness, double density, double albedo) {
   if (!(thickness >= 0))
     throw ConfigError("<python>", "thickness", "= " + exact_text(thickness) + " must be >= 0 (inf: a half-space)");
   check_argument("density", density, {0, INFINITY, false, true});
-  check_argument("albedo", albedo, kUnit);
+  check_argument("albedo", albedo, kUnitInterval);
 }
 
 // Model factories throw std::invalid_argument: one line for Python too.
@@ -103,20 +103,20 @@ void bind_sggx(py::module_& root) {
         }, py::arg("sggx"), py::arg("theta_i"), py::arg("phi_i"), py::arg("theta_o"), py::arg("phi_o"),
         "SpongeCake Eq. 4: f_p(wi -> wo) = D(h) / (4 sigma(wi)), h = normalize(wi + wo); normalised.");
   m.def("hg_phase", py::vectorize([](double g, double ti, double pi_, double to, double po) {
-          return sggx::hg_phase(g, spherical_direction(ti, pi_), spherical_direction(to, po));
+          return sggx::hg_phase(argument("g", g, kG), spherical_direction(ti, pi_), spherical_direction(to, po));
         }), py::arg("g"), py::arg("theta_i"), py::arg("phi_i"), py::arg("theta_o"), py::arg("phi_o"),
         "Henyey-Greenstein, cos = dot(-wi, wo): (1 - g^2) / (4 pi (1 + g^2 - 2 g cos)^1.5).");
 
   py::class_<sggx::Layer>(m, "Layer", "One homogeneous SpongeCake layer, one colour channel.")
       .def_static("sggx", [](double thickness, double density, const sggx::Sggx& s, double albedo, double f0) {
         check_layer(thickness, density, albedo);
-        check_argument("f0", f0, kUnit);
+        check_argument("f0", f0, kUnitInterval);
         return checked("layer", [&] { return sggx::sggx_layer(thickness, density, s, albedo, f0); });
       }, py::arg("thickness"), py::arg("density"), py::arg("sggx"), py::arg("albedo") = 1.0, py::arg("f0") = 1.0,
                   "Specular SGGX flakes, F = albedo Schlick(f0, |wi.h|); extinction density sigma(w).")
       .def_static("hg", [](double thickness, double density, double g, double albedo) {
         check_layer(thickness, density, albedo);
-        check_argument("g", g, {-1, 1, true, true});
+        check_argument("g", g, kG);
         return checked("layer", [&] { return sggx::hg_layer(thickness, density, g, albedo); });
       }, py::arg("thickness"), py::arg("density"), py::arg("g"), py::arg("albedo") = 1.0)
       .def_static("isotropic", [](double thickness, double density, double albedo) {
@@ -143,7 +143,8 @@ void bind_sggx(py::module_& root) {
           return vectorized([&](double albedo, double ti, double pi_, double to,
                                                     double po) {
           const Vec3 wi = spherical_direction(ti, pi_), wo = spherical_direction(to, po);
-          return sggx::single_scattering_reflection(st, wi, wo) + sggx::lambertian_substrate_term(st, wi, wo, albedo);
+          return sggx::single_scattering_reflection(st, wi, wo) +
+                 sggx::lambertian_substrate_term(st, wi, wo, argument("substrate_albedo", albedo, kUnitInterval));
         }, albedo, ti, pi_, to, po);
         }, py::arg("layers"), py::arg("substrate_albedo"), py::arg("theta_i"), py::arg("phi_i"), py::arg("theta_o"),
         py::arg("phi_o"),

@@ -78,6 +78,16 @@ inline void check_argument(const char* name, double value, const Range& allowed)
     throw ConfigError("<python>", name, "= " + exact_text(value) + " is out of range; allowed " + allowed.text());
 }
 
+// A value checked as check_argument, returned: for arguments that broadcast
+// (checked per element inside py::vectorize).
+inline double argument(const char* name, double value, const Range& allowed) {
+  check_argument(name, value, allowed);
+  return value;
+}
+// Ranges shared by the model families.
+inline const Range kUnitInterval{0, 1, false, false};  // albedos, cosines away from the surface, heights
+inline const Range kCosine{-1, 1, false, false};       // a cosine between two directions
+
 // A micrograin field's parameters in the models' domain, tau0 in (0, 1) and
 // beta > 0 (outside it the formulas still give numbers, e.g. tau+ < 0 for tau0 < 0).
 inline double tau0_in(double tau0) {
