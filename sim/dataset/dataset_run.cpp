@@ -12,6 +12,7 @@
 #include "sim/experiment/config_error.h"
 #include "sim/experiment/simulate.h"
 #include "sim/experiment/table_plan.h"
+#include "sim/files/directory_lock.h"
 #include "sim/hdf5/table_file.h"
 #include "sim/parallel/progress.h"
 
@@ -133,9 +134,11 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
   bool more = false;  // pending entries beyond --stop-after
   std::vector<bool> finished;  // of this shard's entries, k < s.entries (on rank 0)
   std::string error;
+  std::unique_ptr<DirectoryLock> lock;  // held by rank 0 to the end: one process per OUTPUT
   if (ranks.root()) {
     try {
       check_parameter_values(c);
+      lock = std::make_unique<DirectoryLock>(dir, o.output, "-o");
       for (std::int64_t k = 0; k < s.entries && !more; ++k) {
         finished.push_back(usable_part(part_path(dir, index(k)), part_header, index(k), dir));
         if (finished.back()) ++s.reused;
@@ -219,26 +222,31 @@ std::int64_t merge_datasets(const std::vector<std::string>& inputs, const std::s
     if (!why.empty()) throw ConfigError(inputs[k], "", "does not belong with " + inputs[0] + ": " + why);
   }
   const std::int64_t n = first.entries;
-  std::vector<int> owner(static_cast<std::size_t>(n), -1);
+  // (entry, shard) pairs, sorted: memory as the entries the files hold, not
+  // as the declared count (a part of a 2^40-entry dataset was a bad_alloc).
+  std::vector<std::pair<std::int64_t, std::size_t>> owner;
   for (std::size_t k = 0; k < shards.size(); ++k)
     for (std::int64_t i : shards[k]->indices()) {
       if (i < 0 || i >= n) throw ConfigError(inputs[k], "", "holds entry " + std::to_string(i) + " outside [0, " + std::to_string(n) + ")");
-      int& o = owner[static_cast<std::size_t>(i)];
-      if (o >= 0)
-        throw ConfigError(inputs[k], "", "overlaps with " + inputs[static_cast<std::size_t>(o)] + ": both hold entry " +
-                                             std::to_string(i) + " (each shard K/N must be given once)");
-      o = static_cast<int>(k);
+      owner.emplace_back(i, k);
     }
-  std::vector<std::int64_t> missing;
-  for (std::int64_t i = 0; i < n; ++i)
-    if (owner[static_cast<std::size_t>(i)] < 0) missing.push_back(i);
-  if (!missing.empty()) {
+  std::sort(owner.begin(), owner.end());
+  for (std::size_t j = 1; j < owner.size(); ++j)
+    if (owner[j].first == owner[j - 1].first)
+      throw ConfigError(inputs[owner[j].second], "", "overlaps with " + inputs[owner[j - 1].second] + ": both hold entry " +
+                                                       std::to_string(owner[j].first) + " (each shard K/N must be given once)");
+  if (static_cast<std::int64_t>(owner.size()) != n) {
+    std::vector<std::int64_t> first_missing;  // the first 9 (8 are listed)
+    for (std::int64_t i = 0, j = 0; i < n && first_missing.size() < 9; ++i)
+      if (j < static_cast<std::int64_t>(owner.size()) && owner[static_cast<std::size_t>(j)].first == i) ++j;
+      else first_missing.push_back(i);
     std::string list;
-    for (std::size_t j = 0; j < std::min<std::size_t>(missing.size(), 8); ++j)
-      list += (j ? ", " : "") + std::to_string(missing[j]);
-    throw ConfigError(output, "", std::to_string(missing.size()) + " of " + std::to_string(n) +
+    for (std::size_t j = 0; j < std::min<std::size_t>(first_missing.size(), 8); ++j)
+      list += (j ? ", " : "") + std::to_string(first_missing[j]);
+    if (first_missing.size() > 8) list += ", ...";
+    throw ConfigError(output, "", std::to_string(n - static_cast<std::int64_t>(owner.size())) + " of " + std::to_string(n) +
                                       " entries are missing from the shards given (entries " + list +
-                                      (missing.size() > 8 ? ", ..." : "") + "); merge every shard K/N, K = 0..N-1");
+                                      "); merge every shard K/N, K = 0..N-1");
   }
   DatasetHeader h = first;
   h.shard = "all";
@@ -248,7 +256,7 @@ std::int64_t merge_datasets(const std::vector<std::string>& inputs, const std::s
   Progress progress("merge", static_cast<double>(n), quiet);
   DatasetWriter w(output, h);
   for (std::int64_t i = 0; i < n; ++i) {
-    w.add(shards[static_cast<std::size_t>(owner[static_cast<std::size_t>(i)])]->entry(i));
+    w.add(shards[owner[static_cast<std::size_t>(i)].second]->entry(i));
     progress.advance(1);
   }
   w.commit();

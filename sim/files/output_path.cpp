@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "sim/experiment/config_error.h"
+#include "sim/files/temp_file.h"
 
 namespace mcref {
 
@@ -73,6 +74,20 @@ void check_temp_name_fits(const std::string& path, const std::string& flag) {
                                       " the file system allows; choose a shorter name");
 }
 
+// Refuses an input named as a temporary of `path` (<output>.tmp.<pid>, the
+// input itself or the file it links to): TempFile removes those whose process
+// no longer runs, taking them for what a killed run left.
+void check_no_input_named_as_temp(const std::string& path, const std::vector<std::string>& inputs,
+                                  const std::string& flag) {
+  const fs::path out = resolved_parent(path);
+  for (const std::string& in : inputs)
+    for (const fs::path& p : {resolved_parent(in), resolved(in)})
+      if (p.parent_path() == out.parent_path() && is_temp_name(p.filename().string(), out.filename().string()))
+        throw ConfigError(path, flag, "the input " + in + " is named as this output's temporary (" +
+                                          out.filename().string() + ".tmp.<pid>), which a run removes once its " +
+                                          "process has ended; rename the input or choose another output");
+}
+
 }  // namespace
 
 bool same_file(const std::string& a, const std::string& b) {
@@ -88,6 +103,7 @@ void check_replaceable_file(const std::string& path, const std::vector<std::stri
   if (path.empty()) throw ConfigError("command line", flag, "an output path is required");
   for (const std::string& in : inputs)
     if (same_file(path, in)) throw ConfigError(path, flag, "is the input " + in + "; choose another output");
+  check_no_input_named_as_temp(path, inputs, flag);
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw ConfigError(path, flag, "is a directory; give a file name");
   const std::string kind = special_kind(path);

@@ -9,8 +9,10 @@
 //     the file it points to is left as it was;
 //   - the temporary name <output>.tmp.<pid> must fit the file system's name
 //     limit (NAME_MAX);
-//   - an output must not resolve to any input (links and ".." resolved), and
-//     no input may lie in a directory the run writes into (check_inputs_outside).
+//   - an output must not resolve to any input (links and ".." resolved), no
+//     input may be named as the output's temporary (<output>.tmp.<pid>: a stale
+//     one is removed), and no input may lie in a directory the run writes into
+//     (check_inputs_outside).
 // Violations are ConfigError naming the path and the flag.
 #include <string>
 #include <vector>

@@ -79,6 +79,13 @@ void release_slot(int i) {
 
 void leave_signals_to_host() { g_signals_to_host.store(true); }
 
+bool is_temp_name(const std::string& name, const std::string& output_name) {
+  const std::string prefix = output_name + ".tmp.";
+  if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) return false;
+  const std::string digits = name.substr(prefix.size());
+  return digits.find_first_not_of("0123456789") == std::string::npos && digits.size() <= 9;
+}
+
 int remove_stale_temps(const std::string& output) {
   const fs::path out = fs::absolute(output);
   const std::string prefix = out.filename().string() + ".tmp.";
@@ -86,10 +93,8 @@ int remove_stale_temps(const std::string& output) {
   int removed = 0;
   for (fs::directory_iterator it(out.parent_path(), ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
-    const std::string digits = name.substr(prefix.size());
-    if (digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 9) continue;
-    const pid_t pid = static_cast<pid_t>(std::stol(digits));
+    if (!is_temp_name(name, out.filename().string())) continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(name.substr(prefix.size())));
     if (pid == getpid() || kill(pid, 0) == 0 || errno != ESRCH) continue;  // its writer may still run
     std::error_code rm;
     if (fs::remove(it->path(), rm)) ++removed;

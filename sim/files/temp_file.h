@@ -43,4 +43,8 @@ void leave_signals_to_host();
 // <output>.tmp.<pid> files whose process no longer runs, removed; returns how many.
 int remove_stale_temps(const std::string& output);
 
+// True if the file name `name` has the form of a temporary of the output file
+// named `output_name` (<output_name>.tmp.<pid>; names only, no directories).
+bool is_temp_name(const std::string& name, const std::string& output_name);
+
 }  // namespace mcref

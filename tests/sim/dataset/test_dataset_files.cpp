@@ -340,7 +340,25 @@ TEST_F(DatasetRun, BadShardSetsAreErrors) {
     return std::string();
   };
   EXPECT_NE(merge_error({path("s0.h5"), path("s0.h5")}).find("overlaps"), std::string::npos);
-  EXPECT_NE(merge_error({path("s0.h5")}).find("3 of 6 entries are missing"), std::string::npos);
+  EXPECT_NE(merge_error({path("s0.h5")}).find("3 of 6 entries are missing from the shards given (entries 1, 3, 5)"),
+            std::string::npos);
+  // A part of a 2^40-entry dataset (2 grid points x 2^39 entries), merged
+  // alone: its missing entries are counted without a table of the declared
+  // size (it was std::bad_alloc, 4 TB of owners).
+  {
+    std::string big = kDataset;
+    big.replace(big.find("entries = 3"), 11, "entries = 549755813888");
+    std::ofstream(dir_ / "big.toml") << big;
+    const mcref::DatasetConfig keep = config_;
+    config_ = mcref::load_dataset(path("big.toml"));
+    run("big.h5", 0, 1, 1, 1);
+    config_ = keep;
+    const std::string e = merge_error({path("big.h5.parts/entry-0.h5")});
+    EXPECT_NE(e.find("1099511627775 of 1099511627776 entries are missing from the shards given (entries 1, 2, 3, 4, 5, "
+                     "6, 7, 8, ...)"),
+              std::string::npos)
+        << e;
+  }
   // A shard of another seed.
   std::string text = kDataset;
   text.replace(text.find("seed = 7"), 8, "seed = 8");

@@ -58,6 +58,26 @@ TEST(OutputPath, InputsInsideAWrittenDirectoryAreRefused) {
   fs::remove_all(d);
 }
 
+// An input named as the output's temporary (<output>.tmp.<pid>), or linking to
+// such a file, is refused: TempFile removes such a file once no process has
+// that pid, taking it for what a killed run left (it removed the input before).
+TEST(OutputPath, InputsNamedAsTheOutputsTemporaryAreRefused) {
+  const fs::path d = fs::temp_directory_path() / ("mcref_test_output_temp_name_" + std::to_string(getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d / "sub");
+  const fs::path temp = d / "out.h5.tmp.4194305";  // above pid_max's default: no such process
+  std::ofstream(temp) << "x";
+  fs::create_symlink(temp, d / "in.toml");
+  std::ofstream(d / "out.h5.tmp.x1") << "x";
+  const std::string out = (d / "out.h5").string();
+  for (const fs::path& in : {temp, d / "in.toml", d / "sub" / ".." / "out.h5.tmp.4194305"})
+    EXPECT_THROW(check_output_file(out, {in.string()}), ConfigError) << in;
+  for (const fs::path& in : {d / "out.h5.tmp.x1", d / "sub" / "out.h5.tmp.4194305", d / "out.h5.tmp"})
+    EXPECT_NO_THROW(check_output_file(out, {in.string()})) << in;
+  EXPECT_TRUE(fs::exists(temp));
+  fs::remove_all(d);
+}
+
 // An existing output must be a regular file (or a link, which is replaced):
 // a FIFO is refused; so is a name whose temporary <name>.tmp.<pid> is too long.
 TEST(OutputPath, OnlyRegularFilesAndLinksMayBeReplaced) {

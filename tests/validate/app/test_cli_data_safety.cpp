@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/mount.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
@@ -59,6 +61,39 @@ TEST_F(Cli, OutputNamingAnInputIsRefused) {
   expect_one_line_error(mcref("merge " + quote(path("t.h5")) + " -o " + quote(path("t.h5")) + " --quiet"),
                         {"is the input"});
   EXPECT_EQ(slurp(path("t.h5")), shard);
+}
+
+// An input named as the output's temporary, <output>.tmp.<pid> with no such
+// process, was removed as a stale temporary before the run (exit 0, input gone).
+TEST_F(Cli, AnInputNamedAsTheOutputsTemporaryIsRefused) {
+  const std::string exp = write("t.h5.tmp.4194305", experiment());  // above pid_max's default
+  expect_one_line_error(mcref("simulate " + quote(exp) + " -o " + quote(path("t.h5")) + " --quiet"),
+                        {"-o", "is named as this output's temporary"});
+  EXPECT_EQ(slurp(exp), experiment());
+  EXPECT_FALSE(fs::exists(path("t.h5")));
+}
+
+// A second process given the output of a running dataset is refused at once
+// (it holds a lock on OUTPUT.parts/; here the test holds it). Before, two
+// shard runs given one -o both exited 0: the last renamed its OUTPUT over the
+// other's, and each removed the parts it found, so one shard was lost.
+TEST_F(Cli, ASecondDatasetProcessOnOneOutputIsRefused) {
+  write("x.toml", experiment());
+  write("ds.toml", "[dataset]\nexperiment = \"x.toml\"\n[[parameter]]\nkey = \"geometry.tau0\"\nvalues = [0.3, 0.6]\n");
+  fs::create_directories(path("d.h5.parts"));
+  const int fd = open(path("d.h5.parts").c_str(), O_RDONLY | O_DIRECTORY);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
+  for (const std::string shard : {"", " --shard 1/2"}) {
+    const Result r = mcref("dataset " + quote(path("ds.toml")) + " -o " + quote(path("d.h5")) + shard + " --quiet");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    expect_one_line_error(r, {path("d.h5"), "-o", "another process is writing this output", "d.h5.parts"});
+    EXPECT_FALSE(fs::exists(path("d.h5")));
+  }
+  close(fd);
+  const Result r = mcref("dataset " + quote(path("ds.toml")) + " -o " + quote(path("d.h5")) + " --quiet");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(path("d.h5.parts"))) << "the parts directory is removed once the output is assembled";
 }
 
 // geometry.density_vdb is an input too: simulate, export-vdb and dataset refuse
