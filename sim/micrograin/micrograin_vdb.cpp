@@ -39,7 +39,8 @@ std::string voxel_count_text(const MicrograinVoxels& v) {
   return buf;
 }
 
-openvdb::FloatGrid::Ptr micrograin_grid(const MicrograinField& f, const MicrograinVoxels& v, std::uint64_t seed) {
+openvdb::FloatGrid::Ptr micrograin_grid(const MicrograinField& f, const MicrograinVoxels& v, std::uint64_t run_seed,
+                                        std::uint64_t realization) {
   if (v.count() > kMaxMicrograinVoxels)
     throw std::invalid_argument("the grain grid would hold " + voxel_count_text(v) +
                                 " voxels (more than 2e8); use a larger voxel size or a smaller tile");
@@ -82,7 +83,9 @@ openvdb::FloatGrid::Ptr micrograin_grid(const MicrograinField& f, const Microgra
   grid->insertMeta("tile", openvdb::DoubleMetadata(g.tile));
   grid->insertMeta("tile_side", openvdb::DoubleMetadata(f.tile_side()));
   grid->insertMeta("c", openvdb::DoubleMetadata(g.c()));
-  grid->insertMeta("seed", openvdb::Int64Metadata(static_cast<openvdb::Int64>(seed)));
+  // run.seed (< 2^63), not the realization's derived seed: that one fills 64 bits and read as Int64 was negative.
+  grid->insertMeta("seed", openvdb::Int64Metadata(static_cast<openvdb::Int64>(run_seed)));
+  grid->insertMeta("realization", openvdb::Int64Metadata(static_cast<openvdb::Int64>(realization)));
   grid->insertMeta("grain_count", openvdb::Int64Metadata(static_cast<openvdb::Int64>(f.grain_count())));
   return grid;
 }

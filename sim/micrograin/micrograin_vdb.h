@@ -34,8 +34,12 @@ std::string voxel_count_text(const MicrograinVoxels& v);
 // Largest voxel count export-vdb accepts.
 inline constexpr double kMaxMicrograinVoxels = 2e8;
 
-// Voxelises the field (throws std::invalid_argument above kMaxMicrograinVoxels).
-openvdb::FloatGrid::Ptr micrograin_grid(const MicrograinField& field, const MicrograinVoxels& v, std::uint64_t seed);
+// Voxelises the field (throws std::invalid_argument above kMaxMicrograinVoxels),
+// realization `realization` of run.seed `run_seed`: both are metadata (seed,
+// realization), so that the field can be built again from them
+// (micrograin_realization_seed).
+openvdb::FloatGrid::Ptr micrograin_grid(const MicrograinField& field, const MicrograinVoxels& v, std::uint64_t run_seed,
+                                        std::uint64_t realization);
 void write_micrograin_vdb(const std::string& path, const openvdb::FloatGrid::Ptr& grid);
 
 }  // namespace mcref

@@ -25,6 +25,17 @@ void locate(const std::vector<double>& p, double x, std::size_t& i, double& w) {
   w = (x - p[i]) / (p[i + 1] - p[i]);
 }
 
+// An axis's positions: points, or bin centres; refused unless in radians and increasing.
+template <class Refuse>
+std::vector<double> positions(const Axis& a, const Refuse& refuse) {
+  if (a.unit != "rad") refuse("axis '" + a.name + "' is in \"" + a.unit + "\"; export needs angles in rad");
+  std::vector<double> p;
+  for (std::size_t k = 0; k < a.size(); ++k) p.push_back(a.centre(k));
+  for (std::size_t k = 1; k < p.size(); ++k)
+    if (!(p[k] > p[k - 1])) refuse("axis '" + a.name + "' is not increasing (" + deg(p[k - 1]) + " then " + deg(p[k]) + " deg)");
+  return p;
+}
+
 }  // namespace
 
 BrdfInterpolation::BrdfInterpolation(const Table& t, const std::string& file) {
@@ -37,14 +48,15 @@ BrdfInterpolation::BrdfInterpolation(const Table& t, const std::string& file) {
   if (!(names.size() >= 4 && names[0] == "theta_i" && names[1] == "phi_i" && names[2] == "theta_o" && names[3] == "phi" &&
         (names.size() == 4 || channel)))
     refuse("axes must be theta_i, phi_i, theta_o, phi[, channel]");
+  ti_ = positions(t.axes[0], refuse);  // (theta_i given as bins: at their centres; it read past the points)
+  to_ = positions(t.axes[2], refuse);
+  ph_ = positions(t.axes[3], refuse);
+  positions(t.axes[1], refuse);
   if (t.axes[1].size() != 1) refuse("has " + std::to_string(t.axes[1].size()) + " incident azimuths; MERL holds isotropic BRDFs (one phi_i)");
   if (t.axes[3].values.back() - t.axes[3].values.front() > kPi + 1e-9)
     refuse("is anisotropic (phi over [0, 2 pi), from an anisotropic medium); MERL holds isotropic BRDFs (phi over [0, pi])");
   channels_ = channel ? static_cast<int>(t.axes[4].size()) : 1;
   if (channels_ != 1 && channels_ != 3) refuse("has " + std::to_string(channels_) + " channels (1 or 3 allowed)");
-  ti_ = t.axes[0].values;
-  for (std::size_t k = 0; k < t.axes[2].size(); ++k) to_.push_back(t.axes[2].centre(k));
-  for (std::size_t k = 0; k < t.axes[3].size(); ++k) ph_.push_back(t.axes[3].centre(k));
   double gap = 0;
   for (std::size_t k = 1; k < ti_.size(); ++k) gap = std::max(gap, ti_[k] - ti_[k - 1]);
   const double d = kPi / 180;

@@ -1,8 +1,10 @@
 #pragma once
 // An isotropic BRDF table read as a function f(theta_i, theta_o, phi, channel):
 // trilinear interpolation of the bin averages placed at their axis points
-// (theta_i: the listed incident angles; theta_o, phi: bin centres), for export
-// to renderers' formats (mcref export-brdf).
+// (theta_i: the listed incident angles; theta_o, phi: bin centres; an axis of
+// the other kind, from a table made in Python, at its points or centres), for
+// export to renderers' formats (mcref export-brdf). Angle axes must be in rad
+// and increasing.
 //   - phi = phi_o - phi_i is folded into [0, pi] (the tables' convention);
 //   - outside the outermost points, the nearest value is held (no extrapolation);
 //   - directions below the horizon (cos <= 0) give 0.

@@ -139,3 +139,77 @@ def test_anisotropic_table_refused(cli, tmp_path):
     lines = err.strip().splitlines()
     assert len(lines) == 1 and "anisotropic" in lines[0] and "MERL" in lines[0], err
     assert not out.exists()
+
+
+def constant_table(theta_i, theta_o_deg=np.linspace(0, 90, 9), phi_deg=np.linspace(0, 180, 9)):
+    """A brdf table made in Python whose every cell is 1, theta_i the given axis; theta_o, phi bins."""
+    axes = [theta_i, mcref.Axis.points("phi_i", "rad", [0.0]), mcref.Axis.bins("theta_o", "rad", np.radians(theta_o_deg)),
+            mcref.Axis.bins("phi", "rad", np.radians(phi_deg)), mcref.Axis.points("channel", "RGB index", [0, 1, 2])]
+    shape = tuple(len(a.centres) for a in axes)
+    return mcref.Table("brdf", "brdf", axes, 2 * np.ones(shape), 2 * np.ones(shape), batches=2, units="1/sr")
+
+
+def test_theta_i_given_as_bins_is_read_at_its_centres(cli, tmp_path):
+    """theta_i as bins (9 edges, 8 rows): the exporter took the 9 edges as points and read one row past
+    the array (an outside audit: valgrind's invalid reads, and 184549 cells of the file not 1). Now every
+    cell is 1."""
+    h5 = tmp_path / "bins.h5"
+    edges = np.radians([0, 5, 15, 30, 45, 60, 75, 85, 90])  # centres 2.5 ... 87.5 deg, steps <= 15 deg
+    mcref.write_tables(str(h5), [constant_table(mcref.Axis.bins("theta_i", "rad", edges))])
+    out = tmp_path / "bins.binary"
+    code, _, err = cli("export-brdf", str(h5), "--table", "brdf", "--format", "merl", "-o", str(out), "--quiet")
+    assert code == 0, err
+    dims, rgb = read_merl(out)
+    wi, wo = merl_directions(*(a.ravel() for a in np.meshgrid(np.arange(90), np.arange(90), np.arange(180), indexing="ij")))
+    above = ((wi[:, 2] > 1e-9) & (wo[:, 2] > 1e-9)).reshape(90, 90, 180)
+    assert above.sum() > 10**5
+    assert np.allclose(rgb[:, above], 1.0, rtol=1e-12, atol=0), np.unique(rgb[:, above])  # 1 through MERL's scale
+
+
+@pytest.mark.parametrize("theta_i, why", [
+    (mcref.Axis.points("theta_i", "deg", list(range(0, 90, 10))), "is in \"deg\""),
+    (mcref.Axis.points("theta_i", "rad", list(np.radians(range(80, -1, -10)))), "is not increasing (80 then 70 deg)"),
+])
+def test_angles_not_in_increasing_radians_are_refused(cli, tmp_path, theta_i, why):
+    """Degrees were refused as "anisotropic", and descending angles as "too coarse ... largest step 0 deg"."""
+    h5 = tmp_path / "t.h5"
+    mcref.write_tables(str(h5), [constant_table(theta_i)])
+    out = tmp_path / "t.binary"
+    code, _, err = cli("export-brdf", str(h5), "--table", "brdf", "--format", "merl", "-o", str(out))
+    assert code == 2, err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and why in lines[0] and "theta_i" in lines[0], err
+    assert not out.exists()
+
+
+def test_delta_lobes_left_out_are_named_in_a_warning(cli, tmp_path):
+    """A smooth conductor under a thin layer reflects much of the light as a mirror (a delta lobe,
+    in brdf_delta, never in the bins): the export succeeds without it and says so on stderr, with the
+    largest energy left out. Before, it said nothing. A table without delta lobes gives no warning."""
+    slab = {"geometry": {"kind": "slab", "substrate": "conductor",
+                         "layer": [{"phase": "isotropic", "optical_thickness": 0.2, "albedo": 0.8}]},
+            "run": {"seed": 3, "batches": 2},
+            "measure": [{"quantity": "brdf", "theta_i_deg": [0, 15, 30, 45, 60, 75], "theta_o_bins": 8,
+                         "phi_bins": 8, "samples": 400}]}
+    tables = mcref.simulate(slab)
+    delta = tables["brdf_delta"].value[:, 0, -1, :]  # theta_i, channel: the total component
+    assert delta.max() > 0.3  # the premise: the mirror carries energy
+    h5 = tmp_path / "mirror.h5"
+    mcref.write_tables(str(h5), tables)
+    out = tmp_path / "mirror.binary"
+    code, _, err = cli("export-brdf", str(h5), "--table", "brdf", "--format", "merl", "-o", str(out), "--quiet")
+    assert code == 0 and out.exists(), err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and "warning: brdf_delta: delta lobes" in lines[0] and str(out) in lines[0], err
+    assert f"up to {delta.max():.3g} of the incident energy" in lines[0], (err, delta.max())
+    # The diffuse micrograin table of the round trip: no delta lobes, no warning.
+    h5 = tmp_path / "diffuse.h5"
+    mcref.write_tables(str(h5), mcref.simulate(brdf_config(), seed=1))
+    code, _, err = cli("export-brdf", str(h5), "--table", "brdf", "--format", "merl", "-o", str(tmp_path / "d.binary"),
+                       "--quiet")
+    assert code == 0 and err == "", err
+
+
+def test_the_format_is_required(cli, tmp_path):
+    code, _, err = cli("export-brdf", str(tmp_path / "t.h5"), "--table", "brdf", "-o", str(tmp_path / "o.binary"))
+    assert code == 2 and "the output format is required (--format merl)" in err, err

@@ -124,6 +124,17 @@ def test_write_tables_is_read_by_info_and_back(cli, tmp_path):
     assert not [p for p in os.listdir(tmp_path) if ".tmp" in p]  # no temporaries left
 
 
+def test_info_gives_no_standard_error_for_one_batch(cli, tmp_path):
+    """One batch has no standard error (NaN); info printed "max rel. stderr=0", as if exact."""
+    s = np.arange(1.0, 5.0)
+    tab = mcref.Table("one", "tau_plus", [mcref.Axis.bins("theta_i", "rad", np.linspace(0, 1, 5))], s, s * s, batches=1)
+    path = tmp_path / "one.h5"
+    mcref.write_tables(str(path), [tab])
+    assert np.all(np.isnan(mcref.read_tables(str(path))["one"].stderr))
+    code, out, err = cli("info", str(path))
+    assert code == 0 and "batches=1  max rel. stderr=n/a (one batch)" in out, (out, err)
+
+
 def test_write_new_table_from_arrays(cli, tmp_path):
     edges = np.linspace(0, np.pi / 2, 5)
     s = np.arange(4.0)
@@ -132,7 +143,8 @@ def test_write_new_table_from_arrays(cli, tmp_path):
     path = tmp_path / "mine.h5"
     mcref.write_tables(str(path), [tab], config="# none", seed=9)
     code, out, err = cli("info", str(path))
-    assert code == 0, err and "mine" in out
+    assert code == 0 and "mine" in out, err
+    assert "batches=2  max rel. stderr=" in out and "n/a" not in out, out
     back = mcref.read_tables(str(path))["mine"]
     assert np.array_equal(back.value, s / 2)
     assert np.array_equal(back.axis("theta_i").edges, edges)

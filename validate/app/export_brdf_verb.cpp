@@ -30,7 +30,33 @@ const char* kHelp =
     "phi bin centres), held constant beyond the outermost points. Density rule: theta_i\n"
     "from <= 5 deg to >= 75 deg in steps <= 15 deg, >= 8 theta_o bins, >= 8 phi bins\n"
     "over [0, pi]; coarser tables are refused, and so are anisotropic tables (phi over\n"
-    "[0, 2 pi) or several phi_i: MERL is isotropic).\n";
+    "[0, 2 pi) or several phi_i: MERL is isotropic). Delta lobes (a smooth mirror, the\n"
+    "unscattered light; table <name>_delta) cannot be held: a warning gives the largest\n"
+    "energy they carry, and the file leaves them out.\n";
+// Warns (whatever --quiet says: the output lacks energy) if the exported
+// table's delta lobes (a smooth mirror, the unscattered light) carry energy,
+// which a MERL file cannot hold: their table <base>_delta (brdf_tally.cpp),
+// total component (the last), largest over theta_i and channels.
+void warn_of_delta_lobes(const TableFile& file, const Table& t, const std::string& output) {
+  const auto part = t.attributes.find("component");
+  if (part == t.attributes.end()) return;
+  const std::string suffix = part->second == "total" ? "" : "_" + part->second;
+  const std::string base = t.name.substr(0, t.name.size() - suffix.size());
+  const Table* delta = file.find(base + "_delta");
+  if (!delta || delta->axes.size() != 4) return;
+  const std::vector<double> v = delta->values();
+  const std::size_t comps = delta->axes[2].size(), channels = delta->axes[3].size(), per_ti = v.size() / delta->axes[0].size();
+  double largest = 0;
+  std::size_t at = 0;
+  for (std::size_t n = 0; n < v.size(); ++n)
+    if ((n / channels) % comps == comps - 1 && v[n] > largest) largest = v[n], at = n / per_ti;
+  if (!(largest > 0)) return;
+  std::fprintf(stderr,
+               "mcref export-brdf: warning: %s: delta lobes (a smooth mirror or unscattered light) carry up to %.3g of the "
+               "incident energy (theta_i = %.4g deg); a MERL file cannot hold them, and %s leaves them out\n",
+               delta->name.c_str(), largest, delta->axes[0].centre(at) * 180 / kPi, output.c_str());
+}
+
 }  // namespace
 
 int export_brdf(const std::vector<std::string>& raw) {
@@ -54,6 +80,7 @@ int export_brdf(const std::vector<std::string>& raw) {
   }
   if (a.positional.size() != 1) throw ConfigError("command line", "", "mcref export-brdf needs exactly one TABLES.h5 (see --help)");
   if (table.empty()) throw ConfigError("command line", "--table", "the table to export is required (--table NAME)");
+  if (format.empty()) throw ConfigError("command line", "--format", "the output format is required (--format merl)");
   if (format != "merl") throw ConfigError("command line", "--format", "\"" + format + "\" is not a known format (allowed: merl)");
   if (a.output.empty()) throw ConfigError("command line", "-o", "an output file is required (-o OUT.binary)");
   check_output_file(a.output, {a.positional[0]});
@@ -74,6 +101,7 @@ int export_brdf(const std::vector<std::string>& raw) {
         for (int c = 0; c < 3; ++c) rgb[c][n] = f(ti, to, phi, c);
       }
   write_merl_file(a.output, rgb);
+  warn_of_delta_lobes(file, *t, a.output);
   if (!a.quiet) std::fprintf(stderr, "mcref export-brdf: %s/%s -> %s (MERL, 90 x 90 x 180 x 3)\n", a.positional[0].c_str(), table.c_str(), a.output.c_str());
   return 0;
 }

@@ -32,7 +32,8 @@ const char* kHelp =
     "Micrograin experiments (kind = \"micrograin\"): realization 0 of run.seed (the\n"
     "field simulate uses first) as a fog volume named grains: 1 where the voxel\n"
     "centre lies inside a grain, 0 outside, over the periodic tile and z in [0, c].\n"
-    "Metadata: tau0, beta_x, beta_y, radius, tile, tile_side, c, seed, grain_count.\n"
+    "Metadata: tau0, beta_x, beta_y, radius, tile, tile_side, c, seed (run.seed),\n"
+    "realization (0), grain_count.\n"
     "  --voxel-size H   voxel size in real units (default radius / 8); refused if the\n"
     "                   grid would hold more than 2e8 voxels\n"
     "  --seed N         overrides run.seed\n";
@@ -79,9 +80,8 @@ int export_vdb(const std::vector<std::string>& raw) {
       throw ConfigError("command line", "--voxel-size",
                         "the grain grid would hold " + voxel_count_text(v) +
                             " voxels (more than 2e8); give a larger --voxel-size (real units) or a smaller geometry.tile");
-    const std::uint64_t seed = micrograin_realization_seed(ex.run.seed, 0);
-    const MicrograinField field(ex.micrograin, seed);
-    write_micrograin_vdb(a.output, micrograin_grid(field, v, seed));
+    const MicrograinField field(ex.micrograin, micrograin_realization_seed(ex.run.seed, 0));
+    write_micrograin_vdb(a.output, micrograin_grid(field, v, ex.run.seed, 0));
     written = 1;
   } else {
     throw ConfigError(ex.file, "geometry.kind", "export-vdb writes slab and micrograin grids; \"" + ex.kind + "\" is not supported");

@@ -29,15 +29,20 @@ int info(const std::vector<std::string>& raw) {
       axes << (axes.tellp() > 0 ? " x " : "") << ax.name << "[" << ax.size() << (ax.kind == Axis::Kind::Bins ? " bins" : "") << "]";
     }
     double worst = 0;
-    std::size_t empty = 0;
+    std::size_t empty = 0, judged = 0;
     for (std::size_t i = 0; i < t.cells(); ++i) {
       const double v = t.value(i), e = t.stderr_of(i);
       if (std::isnan(v)) ++empty;
-      if (std::isfinite(v) && std::isfinite(e) && std::fabs(v) > 0) worst = std::fmax(worst, e / std::fabs(v));
+      if (std::isfinite(v) && std::isfinite(e) && std::fabs(v) > 0) worst = std::fmax(worst, e / std::fabs(v)), ++judged;
     }
+    // One batch gives no standard error (NaN): "0" would read as exact.
+    char rel[48];
+    if (t.batches < 2) std::snprintf(rel, sizeof rel, "n/a (one batch)");
+    else if (judged == 0) std::snprintf(rel, sizeof rel, "n/a (no non-zero value)");
+    else std::snprintf(rel, sizeof rel, "%.3g", worst);
     const std::string empties = empty ? "  empty cells=" + std::to_string(empty) : "";
-    std::printf("  %-28s %-18s %s  batches=%lld  max rel. stderr=%.3g%s  [%s]\n", t.name.c_str(), t.quantity.c_str(),
-                axes.str().c_str(), static_cast<long long>(t.batches), worst, empties.c_str(), t.units.c_str());
+    std::printf("  %-28s %-18s %s  batches=%lld  max rel. stderr=%s%s  [%s]\n", t.name.c_str(), t.quantity.c_str(),
+                axes.str().c_str(), static_cast<long long>(t.batches), rel, empties.c_str(), t.units.c_str());
   }
   std::printf("config:\n%s\n", p.config.c_str());
   return 0;

@@ -85,7 +85,7 @@ TEST(ExportVdb, MicrograinBottomLayerCoversTau0) {
   EXPECT_EQ(v.nx, 320);
   EXPECT_EQ(v.nz, 8);
   const std::string path = ::testing::TempDir() + "grains_test.vdb";
-  write_micrograin_vdb(path, micrograin_grid(field, v, seed));
+  write_micrograin_vdb(path, micrograin_grid(field, v, 7, 0));
   const openvdb::FloatGrid::Ptr grid = read_grains(path);
   ASSERT_TRUE(grid);
   EXPECT_EQ(grid->getName(), "grains");
@@ -133,7 +133,7 @@ TEST(ExportVdb, AnisotropicMicrograinCoverage) {
   const std::uint64_t seed = micrograin_realization_seed(11, 0);
   const MicrograinField field(g, seed);
   const MicrograinVoxels v = micrograin_voxels(g, 0.1);
-  const openvdb::FloatGrid::Ptr grid = micrograin_grid(field, v, seed);
+  const openvdb::FloatGrid::Ptr grid = micrograin_grid(field, v, 11, 0);
   const double z = 0.5 * v.hz / g.c();
   const Coverage cov = boolean_coverage(g.tau0, z, field.unit_side_x() * field.unit_side_y());
   EXPECT_NEAR(occupied_fraction(*grid, v.nx, 0), cov.p, 4 * cov.sd);
@@ -169,7 +169,13 @@ TEST(ExportVdb, CommandWritesSimulatedRealization) {
   g.tile = 12;
   const std::uint64_t seed = micrograin_realization_seed(9, 0);
   const MicrograinField field(g, seed);
-  EXPECT_EQ(grid->metaValue<openvdb::Int64>("seed"), static_cast<openvdb::Int64>(seed));
+  // run.seed and the realization: the field is built again from them (the
+  // derived seed was written, negative as Int64 for half the seeds).
+  EXPECT_EQ(grid->metaValue<openvdb::Int64>("seed"), 9);
+  EXPECT_EQ(grid->metaValue<openvdb::Int64>("realization"), 0);
+  const MicrograinField again(g, micrograin_realization_seed(grid->metaValue<openvdb::Int64>("seed"),
+                                                             grid->metaValue<openvdb::Int64>("realization")));
+  EXPECT_EQ(again.grain_count(), field.grain_count());
   EXPECT_EQ(grid->metaValue<openvdb::Int64>("grain_count"), static_cast<openvdb::Int64>(field.grain_count()));
   EXPECT_DOUBLE_EQ(grid->metaValue<double>("beta_x"), 0.8);
 
