@@ -382,8 +382,9 @@ int run_suite(const Suite& suite, const SuiteOptions& o) {
   if (o.ranks->root()) fs::create_directories(fs::path(o.out_dir) / "tables");
   std::vector<CaseResult> results;
   int failures = 0;
-  // Under MPI the other ranks go on to the next case's batches while rank 0
-  // checks this one: an error here must end the job, not leave them waiting.
+  // Under MPI the other ranks wait (asleep) in the next case's reuse verdict
+  // while rank 0 checks this one: an error here must end the job, not leave
+  // them waiting.
   const DistributedStep step;
   for (std::size_t k = 0; k < suite.cases.size(); ++k) {
     const Case& c = suite.cases[k];

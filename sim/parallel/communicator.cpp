@@ -21,6 +21,9 @@ namespace {
 bool g_mpi = false;  // MPI initialised by MpiSession
 int g_rank = 0, g_size = 1;
 bool g_broken = false;  // an exception left a DistributedStep
+bool g_agreed_failure = false;  // an agreement ended in an error: every rank knows it
+
+bool g_checks_over = false;  // a DistributedStep began: ranks depend on each other
 
 bool launched_by_mpi() {
   for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
@@ -45,6 +48,27 @@ void wait_napping(const Done& done) {
     if (nap < std::chrono::milliseconds(2)) nap *= 2;
   }
 }
+
+// A non-blocking operation waited for napping (collectives too: a waiting
+// rank left spinning in MPI_Bcast took the core from rank 0's model checks).
+void wait_for(MPI_Request& request, const char* what) {
+  wait_napping([&] {
+    int done = 0;
+    check(MPI_Test(&request, &done, MPI_STATUS_IGNORE), what);
+    return done != 0;
+  });
+}
+
+// Rank `root`'s text on every rank.
+void broadcast_from(int root, std::string& text) {
+  unsigned long long n = text.size();
+  MPI_Request request;
+  check(MPI_Ibcast(&n, 1, MPI_UNSIGNED_LONG_LONG, root, MPI_COMM_WORLD, &request), "MPI_Ibcast");
+  wait_for(request, "MPI_Ibcast");
+  text.resize(n);
+  check(MPI_Ibcast(text.data(), static_cast<int>(n), MPI_BYTE, root, MPI_COMM_WORLD, &request), "MPI_Ibcast");
+  wait_for(request, "MPI_Ibcast");
+}
 #endif
 
 }  // namespace
@@ -66,11 +90,7 @@ void Communicator::send(int to, int tag, const std::string& bytes) const {
   // A large message waits for the receiver to be ready: sleep meanwhile.
   MPI_Request request;
   check(MPI_Isend(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, to, tag, MPI_COMM_WORLD, &request), "MPI_Isend");
-  wait_napping([&] {
-    int sent = 0;
-    check(MPI_Test(&request, &sent, MPI_STATUS_IGNORE), "MPI_Test");
-    return sent != 0;
-  });
+  wait_for(request, "MPI_Isend");
 }
 
 bool Communicator::pending(int from, int tag) const {
@@ -98,15 +118,11 @@ std::string Communicator::receive(int from, int tag, int* sender) const {
 }
 
 void Communicator::broadcast(std::string& text) const {
-  if (!mpi_) return;
-  unsigned long long n = text.size();
-  check(MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD), "MPI_Bcast");
-  text.resize(n);
-  check(MPI_Bcast(text.data(), static_cast<int>(n), MPI_BYTE, 0, MPI_COMM_WORLD), "MPI_Bcast");
+  if (mpi_) broadcast_from(0, text);
 }
 
-MpiSession::MpiSession(int* argc, char*** argv) {
-  if (!launched_by_mpi()) return;
+MpiSession::MpiSession(int* argc, char*** argv, bool wanted) {
+  if (!wanted || !launched_by_mpi()) return;
   int provided = 0;
   MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
   MPI_Comm_rank(MPI_COMM_WORLD, &g_rank);
@@ -129,7 +145,7 @@ void Communicator::send(int, int, const std::string&) const { no_mpi(); }
 bool Communicator::pending(int, int) const { no_mpi(); }
 std::string Communicator::receive(int, int, int*) const { no_mpi(); }
 void Communicator::broadcast(std::string&) const {}
-MpiSession::MpiSession(int*, char***) { (void)launched_by_mpi; }
+MpiSession::MpiSession(int*, char***, bool) { (void)launched_by_mpi; }
 MpiSession::~MpiSession() = default;
 void MpiSession::abort(int code) { std::exit(code); }
 
@@ -137,15 +153,45 @@ void MpiSession::abort(int code) { std::exit(code); }
 
 bool MpiSession::active() { return g_mpi; }
 
-DistributedStep::DistributedStep() : uncaught_(std::uncaught_exceptions()) {}
+int MpiSession::launcher_rank() {
+  for (const char* v : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
+    if (const char* r = std::getenv(v)) return std::atoi(r);
+  return 0;
+}
+
+DistributedStep::DistributedStep() : uncaught_(std::uncaught_exceptions()) { g_checks_over = true; }
 DistributedStep::~DistributedStep() {
   if (std::uncaught_exceptions() > uncaught_) g_broken = true;
 }
 bool DistributedStep::broken() { return g_broken; }
 
+namespace {
+// The agreement itself: the lowest failing rank, then its error from it.
+std::string agreement(std::string error) {
+#ifdef MCREF_WITH_MPI
+  if (g_mpi && g_size > 1) {
+    int mine = error.empty() ? g_size : g_rank, lowest = g_size;
+    MPI_Request request;
+    check(MPI_Iallreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &request), "MPI_Iallreduce");
+    wait_for(request, "MPI_Iallreduce");
+    if (lowest == g_size) return "";
+    broadcast_from(lowest, error);
+    g_agreed_failure = true;
+    if (lowest != 0) error = "rank " + std::to_string(lowest) + " of " + std::to_string(g_size) + ": " + error;
+  }
+#endif
+  return error;
+}
+}  // namespace
+
 void agree_on_error(const Communicator& comm, std::string error) {
-  comm.broadcast(error);
+  if (comm.size() > 1) error = agreement(error);
   if (!error.empty()) throw ConfigError(error);
+}
+
+std::string join_agreement(const std::string& error) {
+  if (!g_mpi || g_size < 2 || g_agreed_failure || g_broken || g_checks_over) return error;
+  return agreement(error.empty() ? std::string("failed") : error);
 }
 
 void check_on_root(const Communicator& comm, const std::function<void()>& check) {

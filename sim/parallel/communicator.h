@@ -4,10 +4,14 @@
 // initialised, so there is no MPI output). Only the main thread of a rank
 // talks to the others (MPI_THREAD_FUNNELED).
 //
-// Errors: input is checked the same way on every rank before the ranks
-// depend on each other, so a bad input fails on all of them alike (rank 0
-// prints the line). An error inside a DistributedStep (a rank alone, while
-// the others wait for it) ends the whole job (MPI_Abort).
+// Errors: every rank checks its input before the ranks depend on each other,
+// and the checks end in agreements (agree_on_error, check_on_root) where every
+// rank gives its own error, if any: a rank that failed its checks alone (a
+// file its node cannot see, a node's memory budget) joins the next agreement
+// from main's error path (join_agreement), so no rank is left waiting; every
+// rank then exits with the error of the lowest failing rank, printed once by
+// rank 0. An error inside a DistributedStep (a rank alone, while the others
+// wait for it) ends the whole job (MPI_Abort).
 #include <functional>
 #include <string>
 
@@ -45,10 +49,15 @@ class Communicator {
 };
 
 // Initialises MPI for the life of main() when launched by an MPI launcher
-// (OMPI_COMM_WORLD_SIZE, PMI_SIZE or PMIX_RANK set) in an MPI build.
+// (OMPI_COMM_WORLD_SIZE, PMI_SIZE or PMIX_RANK set) in an MPI build, if
+// `wanted` (the verbs that spread work over ranks: a process that does not
+// start MPI may run mcref again within the same task).
 class MpiSession {
  public:
-  MpiSession(int* argc, char*** argv);
+  MpiSession(int* argc, char*** argv, bool wanted = true);
+  // This process's rank as its launcher set it (0 if not launched by one),
+  // known without initialising MPI.
+  static int launcher_rank();
   ~MpiSession();
   MpiSession(const MpiSession&) = delete;
   MpiSession& operator=(const MpiSession&) = delete;
@@ -61,6 +70,7 @@ class MpiSession {
 // it on one rank must end the job (main asks DistributedStep::broken()).
 class DistributedStep {
  public:
+  // Also ends the checks: from here on, main's error path joins no agreement.
   DistributedStep();
   ~DistributedStep();
   DistributedStep(const DistributedStep&) = delete;
@@ -72,9 +82,16 @@ class DistributedStep {
   int uncaught_;
 };
 
-// Throws ConfigError(`error`) on every rank if rank 0's `error` is not empty
-// (rank 0 found it alone, e.g. while scanning files it alone may touch).
+// An agreement: every rank gives its `error` ("" if none); if any is not
+// empty, throws on every rank the ConfigError of the lowest rank that gave one
+// (from a rank other than 0, prefixed "rank K of N: ").
 void agree_on_error(const Communicator& comm, std::string error);
+
+// For main's error path: if the world has more than one rank, no agreement
+// has failed yet and no DistributedStep has begun, the other ranks may be
+// waiting in an agreement for this one: joins it with `error`.
+// Returns the error every rank agreed on (this one's, or a lower rank's).
+std::string join_agreement(const std::string& error);
 
 // Runs `check` on rank 0 alone (e.g. the output path checks: only rank 0
 // writes there) and throws its ConfigError on every rank.

@@ -1,8 +1,10 @@
 #pragma once
 // A progress line with an ETA on a terminal; silent when --quiet, when stderr
 // is not a terminal, or in CI (CI env variable set). Under MPI, callers draw
-// it on rank 0 only, over the whole job. One summary line at the end
-// is printed by the caller.
+// it on rank 0 only, over the whole job, and as a log: one plain line a minute
+// (mpirun gives every rank a terminal even when its own output goes to a
+// file, so a redrawn line would fill a job's log). One summary line at the
+// end is printed by the caller.
 #include <atomic>
 #include <chrono>
 #include <stdexcept>
@@ -32,6 +34,7 @@ class Progress {
   std::string label_;
   double total_, done_ = 0;
   bool enabled_;
+  bool log_;  // under MPI: a plain line a minute
   const std::atomic<bool>* stop_ = nullptr;
   std::chrono::steady_clock::time_point start_, last_draw_;
 };

@@ -30,8 +30,10 @@ const char* kUsage =
     "\n"
     "`mcref <verb> --help` explains each verb; `mcref --version` prints the version and commit.\n";
 
-// Under MPI, an error every rank met alike is printed by rank 0 only; an
-// error one rank met alone while the others wait for it ends the job.
+// Under MPI, an error met while checking the input joins the ranks'
+// agreement (a rank may have met it alone), and rank 0 prints the one every
+// rank agreed on; an error one rank met alone while the others wait for it
+// ends the job.
 int fail(int code, const char* what) {
   const mcref::Communicator& world = mcref::Communicator::world();
   if (world.size() > 1 && mcref::DistributedStep::broken()) {
@@ -39,7 +41,8 @@ int fail(int code, const char* what) {
     std::fflush(stderr);
     mcref::MpiSession::abort(code);
   }
-  if (world.root()) std::fprintf(stderr, "mcref: error: %s\n", what);
+  const std::string agreed = mcref::join_agreement(what);
+  if (world.root()) std::fprintf(stderr, "mcref: error: %s\n", agreed.c_str());
   return code;
 }
 
@@ -67,7 +70,14 @@ int main(int argc, char** argv) {
   // HDF5's exit-time cleanup closes again a file whose close failed (a full
   // disk) and crashes; every mcref file is closed explicitly, so it is not needed.
   H5dont_atexit();
-  const mcref::MpiSession mpi(&argc, &argv);
+  // MPI for the verbs that spread their work over ranks; under a launcher, the
+  // others (info, merge, the exports, help) run on rank 0 alone.
+  bool spread = argc > 1 && (std::strcmp(argv[1], "simulate") == 0 || std::strcmp(argv[1], "validate") == 0 ||
+                             std::strcmp(argv[1], "dataset") == 0);
+  for (int i = 2; i < argc; ++i)
+    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) spread = false;
+  const mcref::MpiSession mpi(&argc, &argv, spread);
+  if (!spread && mcref::MpiSession::launcher_rank() > 0) return 0;
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::fputs(kUsage, args.empty() ? stderr : stdout);

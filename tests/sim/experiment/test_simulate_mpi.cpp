@@ -3,6 +3,7 @@
 // with SOURCE_DATE_EPOCH fixing the date), for every geometry kind and for
 // count attributes (the sphere phase estimator's missed rays); bad input is
 // one line from rank 0 and a non-zero exit on every rank, nothing written.
+#include <algorithm>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -69,4 +70,60 @@ TEST_F(SimulateMpi, BadInputIsOneLineFromRankZeroAndFailsEveryRank) {
   EXPECT_EQ(rank_codes(dir_, 2), (std::vector<int>{2, 2}));
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
   EXPECT_NE(err.find("no/such/dir/t.h5: key '-o': the output's directory"), std::string::npos) << err;
+}
+
+// A rank that fails its checks alone (here rank 1, whose directory lacks the
+// experiment, as a node that cannot see an input) joins the ranks' agreement:
+// every rank exits 2 and rank 0 prints that rank's error, naming it. Before,
+// rank 0 waited for rank 1 forever and nothing was printed (timeout 120 s here).
+TEST_F(SimulateMpi, ARankFailingItsChecksAloneIsNamedAndNoRankWaits) {
+  fs::create_directories(dir_ / "r0");
+  fs::create_directories(dir_ / "r1");
+  fs::copy_file(std::string(MCREF_SOURCE_DIR) + "/validate/experiments/slab_single_layer.toml", dir_ / "r0" / "e.toml");
+  std::string err;
+  const int code = shell(dir_, "rm -f rc.*; timeout 120 " + mpirun(2) + "sh -c 'cd r$OMPI_COMM_WORLD_RANK && \"" +
+                                   MCREF_BINARY + "\" simulate e.toml -o ../t.h5 --set run.batches=4; echo $? > ../rc.$OMPI_COMM_WORLD_RANK'",
+                         &err);
+  EXPECT_NE(code, 124) << "the job hung";
+  EXPECT_EQ(rank_codes(dir_, 2), (std::vector<int>{2, 2}));
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_NE(err.find("mcref: error: rank 1 of 2: e.toml"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "t.h5"));
+}
+
+// Under mpirun every rank's stdout is a terminal, even when the job's output
+// goes to a file: the progress is a log there (a plain line a minute), so a
+// short run writes no progress at all, only its summary; no \r redraws and no
+// escape codes (they were written to the file).
+TEST_F(SimulateMpi, ProgressUnderMpirunIsALogNotARedrawnLine) {
+  std::string err;
+  ASSERT_EQ(shell(dir_, "env -u CI " + mcref_ranks(2, "simulate " + experiment("slab_single_layer") +
+                                                          " -o t.h5 --set run.batches=4 --set measure.0.samples=300"),
+                  &err),
+            0)
+      << err;
+  EXPECT_EQ(err.find('\r'), std::string::npos) << err;
+  EXPECT_EQ(err.find('\033'), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << "the summary alone:\n" << err;
+}
+
+// The single-process verbs run on rank 0 alone and do not start MPI: under
+// mpirun, `info` prints once per call, and a task may call mcref twice (the
+// second call was an MPI_Init_thread error, exit 1; info printed once per rank).
+TEST_F(SimulateMpi, SingleProcessVerbsRunOnRankZeroAloneAndTwice) {
+  std::string err;
+  ASSERT_EQ(shell(dir_, mcref("simulate " + experiment("slab_single_layer") +
+                              " -o t.h5 --quiet --set run.batches=2 --set measure.0.samples=100"),
+                  &err),
+            0)
+      << err;
+  const std::string info = "\"" + std::string(MCREF_BINARY) + "\" info t.h5";
+  ASSERT_EQ(shell(dir_, mpirun(3) + "sh -c '" + info + " && " + info + "' > out.txt", &err), 0) << err;
+  const std::string out = slurp(dir_ / "out.txt");
+  std::size_t reports = 0;
+  for (std::size_t at = out.find("simulation fingerprint"); at != std::string::npos;
+       at = out.find("simulation fingerprint", at + 1))
+    ++reports;
+  EXPECT_EQ(reports, 2u) << out;
+  EXPECT_EQ(err, "");
 }

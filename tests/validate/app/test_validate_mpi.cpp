@@ -78,3 +78,25 @@ TEST_F(ValidateMpi, BadInputIsOneLineFromRankZeroAndFailsEveryRank) {
   std::ofstream(dir_ / "suite.toml") << suite("0.001", "300");
   expect_bad("validate suite.toml -o no/such/out", "no", "mcref: error: no/such/out: key '-o'", "-o");
 }
+
+// Each rank checks the memory the suite's tables need against its own node's
+// budget: a rank whose budget is too small (here rank 1, MCREF_MEMORY_LIMIT=1K)
+// fails alone, joins the ranks' agreement, and every rank exits 2 with its error,
+// named by rank. Before, the job hung with nothing printed (timeout 120 s here).
+TEST_F(ValidateMpi, ARankOverItsOwnMemoryBudgetIsNamedAndNoRankWaits) {
+  std::ofstream(dir_ / "suite.toml") << suite("0.001", "300");
+  const auto rank = [](const std::string& limit) {
+    return "-np 1 -x MCREF_MEMORY_LIMIT=" + limit + " sh -c '\"" + std::string(MCREF_BINARY) +
+           "\" validate suite.toml -o out --quiet; echo $? > rc.$OMPI_COMM_WORLD_RANK'";
+  };
+  std::string err;
+  const int code = shell(dir_, "rm -f rc.*; timeout 120 '" + std::string(MCREF_MPIEXEC) +
+                                   "' -q --allow-run-as-root --oversubscribe " + rank("1T") + " : " + rank("1K"),
+                         &err);
+  EXPECT_NE(code, 124) << "the job hung";
+  EXPECT_EQ(rank_codes(dir_, 2), (std::vector<int>{2, 2}));
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_NE(err.find("mcref: error: rank 1 of 2: "), std::string::npos) << err;
+  EXPECT_NE(err.find("MCREF_MEMORY_LIMIT"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "results.json"));
+}
