@@ -11,7 +11,9 @@ reduced dataset allows, for held-out entries of a trained network (train.py):
                        in 1/sr. Differences on a diverging scale whose range (stated on
                        the colour bar) is the 99th percentile of |simulation|.
   <prefix>_lobes.png   lobes at fixed incidence (theta_i nearest 35 deg, first phi_i) over
-                       (cos theta_o, phi) bins, upper and lower hemispheres: the single scattering
+                       (cos theta_o, phi) bins, upper and lower hemispheres, phi on the
+                       table's own axis ([0, 180] deg where mcref folds it: stacks with
+                       omega_p = z; else [0, 360]): the single scattering
                        (simulated order 1) + multiple scattering (simulated / network)
                        against the simulated total.
   <prefix>_errors.png  the held-out error relative to the multiple scattering against
@@ -36,7 +38,6 @@ import json
 import os
 import sys
 
-import h5py
 import matplotlib
 
 matplotlib.use("Agg")
@@ -46,14 +47,15 @@ import torch  # noqa: E402
 
 if __package__ in (None, ""):
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from spongecake import dataset, errors, fit, fit_dataset, network  # noqa: E402
+from spongecake import dataset, errors, files, fit, fit_dataset, network  # noqa: E402
 from spongecake import torch_model as tm  # noqa: E402
 
 
-def table_shape(path, index):
-    with h5py.File(path, "r") as f:
+def table_axes(path, index):
+    """((theta_i, phi_i, theta_o, phi) sizes, theta_i, phi bin edges in radians) of an entry's brdf table."""
+    with files.open_hdf5(path) as f:
         g = f[f"entries/{index}/brdf"]
-        return g["value"].shape[:4], g["theta_i"][:], g
+        return g["value"].shape[:4], g["theta_i"][:], dataset.edges(g, "phi")
 
 
 def image(values, shape):
@@ -84,9 +86,10 @@ def describe(material, index):
     return f"entry {index}: {stack_text(material.layers)}"
 
 
-def bsdf_figure(out, shown, shape):
+def bsdf_figure(out, shown):
+    """shown: (title, sim, fitted, predicted, table_axes of the entry) per entry."""
     fig, axes = plt.subplots(len(shown), 5, figsize=(17, 2.8 * len(shown)), squeeze=False, layout="constrained")
-    for r, (title, sim, fitted, predicted) in enumerate(shown):
+    for r, (title, sim, fitted, predicted, (shape, _, _)) in enumerate(shown):
         ims = [image(v, shape) for v in (sim, fitted, predicted)]
         top = float(np.percentile(np.abs(ims[0]), 99)) or 1.0
         panels = [(ims[0], "simulation"), (ims[1], "per-material fit"), (ims[2], "network"),
@@ -103,14 +106,19 @@ def bsdf_figure(out, shown, shape):
             fig.colorbar(h, ax=ax, fraction=0.046, pad=0.02).ax.tick_params(labelsize=6)
     fig.supxlabel("outgoing bin: upper hemisphere | lower hemisphere (theta_o major, phi minor)", fontsize=8)
     fig.supylabel("incident direction (theta_i major, phi_i minor)", fontsize=8)
-    fig.savefig(out, dpi=110, bbox_inches="tight")
-    plt.close(fig)
+    save(fig, out)
 
 
-def lobes_figure(out, shown, shape, theta_i, k_theta):
-    n_ti, n_pi, n_to, n_ph = shape
+def lobes_figure(out, shown):
+    """shown: (title, total, single, sim_ms, predicted, table_axes of the entry) per entry. phi
+    is drawn over the entry's own phi bin edges, which span [0, 180] deg where mcref folds phi
+    (omega_p = z) and [0, 360] where it does not: entries of one file may differ."""
     fig, axes = plt.subplots(len(shown), 4, figsize=(13, 3.2 * len(shown)), squeeze=False, layout="constrained")
-    for r, (title, total, single, sim_ms, predicted) in enumerate(shown):
+    for r, (title, total, single, sim_ms, predicted, (shape, theta_i, phi_edges)) in enumerate(shown):
+        n_ti, n_pi, n_to, n_ph = shape
+        k_theta = int(np.argmin(np.abs(np.degrees(theta_i) - 35)))
+        phi_extent = (float(np.degrees(phi_edges[0])), float(np.degrees(phi_edges[-1])))
+
         def lobe(v):
             v = np.asarray(v).mean(-1).reshape(2, n_ti, n_pi, n_to, n_ph)[:, k_theta, 0]
             return np.concatenate([v[0], v[1]], axis=0)  # rows: theta_o upper then lower
@@ -120,7 +128,7 @@ def lobes_figure(out, shown, shape, theta_i, k_theta):
         for c, im in enumerate(ims + [ims[2] - ims[0]]):
             ax = axes[r, c]
             h = ax.imshow(im, cmap="RdBu_r" if c == 3 else "viridis", vmin=-top if c == 3 else 0, vmax=top,
-                          aspect="auto", interpolation="nearest", extent=(0, 360, -1, 1))
+                          aspect="auto", interpolation="nearest", extent=(*phi_extent, -1, 1))
             ax.axhline(0, color="w", lw=0.5)
             ax.set_title(names[c] if c else f"{title}, theta_i = {np.degrees(theta_i[k_theta]):.0f} deg\n{names[c]}",
                          fontsize=8, loc="left")
@@ -131,8 +139,16 @@ def lobes_figure(out, shown, shape, theta_i, k_theta):
                 ax.set_yticklabels([])
             ax.tick_params(labelsize=6)
             fig.colorbar(h, ax=ax, fraction=0.046, pad=0.02).ax.tick_params(labelsize=6)
-    fig.savefig(out, dpi=110, bbox_inches="tight")
-    plt.close(fig)
+    save(fig, out)
+
+
+def save(fig, out):
+    """The figure as a PNG, written whole or not at all."""
+    try:
+        with files.atomic_output(out) as tmp:
+            fig.savefig(tmp, format="png", dpi=110, bbox_inches="tight")
+    finally:
+        plt.close(fig)
 
 
 def errors_figure(out, rows, label):
@@ -151,8 +167,7 @@ def errors_figure(out, rows, label):
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=7)
     fig.suptitle(f"{label}: held-out entries, sum|p - ms| / sum|ms|", fontsize=9)
-    fig.savefig(out, dpi=110, bbox_inches="tight")
-    plt.close(fig)
+    save(fig, out)
 
 
 def main(argv=None):
@@ -167,11 +182,17 @@ def main(argv=None):
                    help="entries drawn: the median, 90th percentile and worst of the network's error, or all")
     p.add_argument("--summary", help="JSON file to write: per-entry errors and the figures' names")
     a = p.parse_args(argv)
+    base = os.path.join(a.output, a.prefix)
+    names = [f"{a.prefix}_{k}.png" for k in ("bsdf", "lobes", "errors")]
     try:
         if not os.path.isdir(a.output):
             raise ValueError(f"-o {a.output}: not a directory")
+        inputs = [("DATA.h5", a.data), ("FITS.h5", a.fits), ("NET.h5", a.weights)]
+        outputs = [("-o", os.path.join(a.output, n)) for n in names]
+        files.check_outputs(outputs + ([("--summary", a.summary)] if a.summary else []), inputs)
         net, attrs = network.load(a.weights)
         fits, fattrs = fit_dataset.read(a.fits)
+        fit_dataset.check_split(a.fits, fattrs, attrs["split"], f"the network {a.weights}")
         sha = dataset.provenance(a.data)["dataset_sha256"]
         if fattrs.get("dataset_sha256") != sha:
             raise ValueError(f"{a.fits}: the fits must come from {a.data} (dataset_sha256 differs)")
@@ -182,10 +203,15 @@ def main(argv=None):
         else:
             if attrs.get("dataset_sha256") != sha:
                 raise ValueError(f"{a.weights}: the weights must come from {a.data} (dataset_sha256), or give --unseen")
-            with h5py.File(a.weights, "r") as f:
+            with files.open_hdf5(a.weights) as f:
                 held = [int(i) for i in f["validation_index"][:] if int(i) in set(int(j) for j in fits["index"])]
         if not held:
             raise ValueError(f"{a.fits}: fits none of the network's held-out entries")
+        available = set(dataset.entry_indices(a.data))  # a dataset file, not a part
+        for i in held:
+            if i not in available:
+                raise ValueError(f"{a.fits}: entry {i} is not in {a.data}")
+            dataset.check_entry(a.data, i, for_network=True)
         if int(fattrs.get("layers", net.n_layers)) != net.n_layers:
             raise ValueError(f"{a.fits}: stacks of {fattrs['layers']} layers; the network of {a.weights} takes {net.n_layers}")
     except (OSError, KeyError, ValueError) as e:
@@ -216,21 +242,18 @@ def main(argv=None):
             picks.append(r)
     if a.show == "all":
         picks = [r for r in rows if np.isfinite(r["network_ms"])]
-    shape, theta_i, _ = table_shape(a.data, held[0])
-    k_theta = int(np.argmin(np.abs(np.degrees(theta_i) - 35)))
     bsdf, lobes = [], []
     for r in picks:
         m = dataset.read_material(a.data, r["entry"])
         fitted, predicted = predictions(a.data, r["entry"], m, fits, net, split)
         title = f"{describe(m, r['entry'])}; network {100 * r['network_ms']:.0f} %, fit {100 * r['fit_ms']:.0f} %"
-        bsdf.append((title, m.ms.numpy(), fitted, predicted))
+        axes = table_axes(a.data, r["entry"])
+        bsdf.append((title, m.ms.numpy(), fitted, predicted, axes))
         single = m.total.numpy() - m.ms.numpy()
-        lobes.append((f"entry {r['entry']}", m.total.numpy(), single, m.ms.numpy(), predicted))
-    base = os.path.join(a.output, a.prefix)
-    bsdf_figure(base + "_bsdf.png", bsdf, shape)
-    lobes_figure(base + "_lobes.png", lobes, shape, theta_i, k_theta)
+        lobes.append((f"entry {r['entry']}", m.total.numpy(), single, m.ms.numpy(), predicted, axes))
+    bsdf_figure(base + "_bsdf.png", bsdf)
+    lobes_figure(base + "_lobes.png", lobes)
     errors_figure(base + "_errors.png", rows, a.prefix)
-    names = [f"{a.prefix}_{k}.png" for k in ("bsdf", "lobes", "errors")]
     if a.summary:
         write_summary(a.summary, rows, [r["entry"] for r in picks], names, a.unseen)
     print(f"figures: {', '.join(os.path.join(a.output, n) for n in names)} ({len(held)} entries)")
@@ -240,10 +263,8 @@ def main(argv=None):
 def write_summary(path, rows, shown, names, unseen):
     """--summary: the rows (NaN as null) and the figures, written whole then renamed."""
     clean = [{k: (None if isinstance(v, float) and not np.isfinite(v) else v) for k, v in r.items()} for r in rows]
-    tmp = f"{path}.tmp.{os.getpid()}"
-    with open(tmp, "w") as f:
+    with files.atomic_output(path) as tmp, open(tmp, "w") as f:
         json.dump({"unseen": unseen, "rows": clean, "shown": shown, "figures": names}, f, indent=1)
-    os.replace(tmp, path)
 
 
 if __name__ == "__main__":

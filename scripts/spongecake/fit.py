@@ -162,6 +162,15 @@ def fit(material, n_starts=4, seed=1, iterations=200, split=(1.0, 1.0), x0=None)
     return best[0], lobes_from_vector(best[1], n, split), best[1], losses
 
 
+# torch.manual_seed and torch.Generator.manual_seed take seeds in [0, 2^64 - 1].
+SEED_RANGE = (0, 2 ** 64 - 1)
+
+
+def check_seed(seed, key="--seed"):
+    if not SEED_RANGE[0] <= seed <= SEED_RANGE[1]:
+        raise ValueError(f"{key} = {seed} (allowed: an integer in [0, 2^64 - 1] = [{SEED_RANGE[0]}, {SEED_RANGE[1]}])")
+
+
 def parse_split(text):
     try:
         r, t = (float(v) for v in text.split(","))

@@ -18,7 +18,8 @@ seed, starts, iterations, split; one row per entry, in entry order:
   vector [n, 8L+1] (fit.lobes_from_vector); lobes/{alpha, thickness} [n, L],
   lobes/{albedo, f0} [n, L, 3], lobes/{w1, w2} [n]; layers/{fiber, alpha, thickness,
   density} [n, L], layers/{albedo, f0, orientation} [n, L, 3] (the entry's stack).
-Written to a temporary file and renamed into place once every fit is done.
+Written to a temporary file and renamed into place once every fit is done; -o is checked
+against the input before any fit (not the dataset, through links or '..' either).
 """
 import argparse
 import math
@@ -31,7 +32,7 @@ import torch
 
 if __package__ in (None, ""):
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from spongecake import dataset, errors, fit  # noqa: E402
+from spongecake import dataset, errors, files, fit  # noqa: E402
 
 FORMAT = "mcref-spongecake-fits"
 METHODS = ("fit", "lambert", "none", "noise", "sscheck")
@@ -57,15 +58,13 @@ def fit_entry(index, material, starts, seed, iterations, split):
 
 
 def write(path, fits, attrs):
-    tmp = path + ".tmp"
-    with h5py.File(tmp, "w") as f:
+    with files.atomic_output(path) as tmp, h5py.File(tmp, "w") as f:
         f.attrs["mcref_format"] = FORMAT
         f.attrs["format_version"] = 1
         for k, v in attrs.items():
             f.attrs[k] = v
         for key in fits[0]:
             f.create_dataset(key, data=np.asarray([r[key] for r in fits]))
-    os.replace(tmp, path)
 
 
 def row(r):
@@ -77,12 +76,22 @@ def row(r):
 
 def read(path):
     """Every dataset of a fits file, as {name: array}, and its attributes."""
-    with h5py.File(path, "r") as f:
+    with files.open_hdf5(path) as f:
         if f.attrs.get("mcref_format") != FORMAT:
             raise ValueError(f"{path}: not a fits file (mcref_format = {FORMAT!r} expected)")
         d = {}
         f.visititems(lambda name, obj: d.__setitem__(name, obj[()]) if isinstance(obj, h5py.Dataset) else None)
         return d, dict(f.attrs)
+
+
+def check_split(path, attrs, split, what):
+    """The Lambertian split a fits file was made with (attribute split) must be `split`, the
+    one its lobes are evaluated with (what: whose split that is)."""
+    fitted = tuple(float(v) for v in attrs.get("split", (1.0, 1.0)))
+    if fitted != tuple(float(v) for v in split):
+        raise ValueError(f"{path}: split = {','.join(f'{v:g}' for v in fitted)} (allowed: "
+                         f"{','.join(f'{float(v):g}' for v in split)}, the Lambertian split of {what}; fit again with "
+                         "fit_dataset.py --split)")
 
 
 def rows(path):
@@ -119,14 +128,11 @@ def main(argv=None):
             return 0
         if not a.data or not a.output:
             raise ValueError("needs DATA.h5 and -o FITS.h5 (or --report FITS.h5)")
-        if a.starts < 1 or a.iterations < 1 or a.seed < 0:
-            raise ValueError(f"--starts = {a.starts}, --iterations = {a.iterations}, --seed = {a.seed} "
-                             "(allowed: starts, iterations >= 1, seed >= 0)")
-        out_dir = os.path.dirname(os.path.abspath(a.output))
-        if not os.path.isdir(out_dir):
-            raise ValueError(f"-o {a.output}: directory {out_dir} does not exist")
-        if os.path.abspath(a.output) == os.path.abspath(a.data):
-            raise ValueError(f"-o {a.output}: is the dataset itself")
+        if a.starts < 1 or a.iterations < 1:
+            raise ValueError(f"--starts = {a.starts}, --iterations = {a.iterations} "
+                             "(allowed: starts, iterations >= 1)")
+        fit.check_seed(a.seed)
+        files.check_outputs([("-o", a.output)], [("DATA.h5", a.data)])
         available = dataset.entry_indices(a.data)
         try:
             entries = available if a.entries is None else [int(v) for v in a.entries.split(",")]

@@ -5,10 +5,18 @@ parameters of the two multiple-scattering lobes. One network per layer count.
 Inputs, per layer (top first), as listed in Sec. 5: alpha, gamma (RGB), T, f0 (RGB),
 the flake type k (0 surface, 1 fibre) and the orientation omega_p (3); alpha and T
 enter as logarithms (they are sampled log-uniformly), and every input is
-standardised with the training set's mean and standard deviation (stored).
+standardised with the training set's mean and standard deviation (stored). T is the
+optical thickness T rho: the single scattering depends on T rho only (Eq. 12), and the
+paper's layers have rho = 1. omega_p enters folded onto the upper hemisphere (z > 0; at
+z = 0, y > 0, then x > 0), where the datasets draw it (validate/datasets/spongecake_*.toml,
+distribution = "direction"): omega_p and -omega_p are the same SGGX medium (S holds
+omega_p omega_p^T, Eq. 7), so they get the same lobes.
 Outputs: the unconstrained vector of fit.lobes_from_vector (per layer alpha', T',
 log W1 gamma' (RGB), f0' (RGB); then log W2), so the network's lobes have the
-ranges of the per-material fit. k and omega_p are passed through unchanged
+ranges of the per-material fit. T' is an optical thickness too (the paper's T' at
+rho = 1), applied to each layer as the thickness T'/rho with the layer's own density
+(lobes_for), so that the lobes depend on the medium only: (T, rho) and (T/c, c rho)
+give the same BSDF. k and omega_p are passed through unchanged
 (torch_model.modified_layers keeps them). Hidden activation: ReLU (the paper does
 not name one). The last layer's bias starts at alpha' = T' = mid-range (log),
 W1 gamma' = 0.3, f0' = 0.5, W2 = 0.05, so the first lobes are of the data's order.
@@ -21,13 +29,12 @@ inputs, outputs, alpha_range, thickness_range, split, the training settings and 
 dataset's provenance (dataset, dataset_sha256, ...).
 """
 import math
-import os
 
 import h5py
 import numpy as np
 import torch
 
-from spongecake import fit
+from spongecake import files, fit
 from spongecake import torch_model as tm
 
 FORMAT = "mcref-spongecake-network"
@@ -50,14 +57,31 @@ def _rgb(v):
     return np.repeat(v, 3) if v.size == 1 else v
 
 
+def folded(w):
+    """omega_p normalised and folded onto the upper hemisphere (the datasets' z >= 0; at
+    z = 0, y > 0, then x > 0): omega_p and -omega_p are the same medium (Eq. 7)."""
+    w = np.asarray(w, dtype=np.float64)
+    w = w / np.linalg.norm(w)
+    x, y, z = w
+    return -w if z < 0 or (z == 0 and (y < 0 or (y == 0 and x < 0))) else w
+
+
 def features(layers):
     """The raw (unstandardised) input vector of one stack of torch_model.FlakeLayer."""
     out = []
     for l in layers:
-        w = np.asarray(l.orientation, dtype=np.float64)
         out += [math.log(l.alpha), *_rgb(l.albedo), math.log(l.thickness * l.density), *_rgb(l.f0),
-                float(bool(l.fiber)), *(w / np.linalg.norm(w))]
+                float(bool(l.fiber)), *folded(l.orientation)]
     return out
+
+
+def lobes_for(x, layers, split=(1.0, 1.0), normalise=True):
+    """fit.lobes_from_vector of the network's outputs x (..., 8 L + 1) for `layers` (fields
+    broadcasting against "...", e.g. batch_layers): T' is the modified layer's optical
+    thickness, so its thickness is T'/rho with the layer's own density (module docstring)."""
+    lobes = fit.lobes_from_vector(x, len(layers), split, normalise)
+    lobes.thickness = [t / tm.as_tensor(l.density) for t, l in zip(lobes.thickness, layers)]
+    return lobes
 
 
 def batch_layers(stacks):
@@ -98,12 +122,11 @@ class Mapping(torch.nn.Module):
     def lobes(self, stacks, split=(1.0, 1.0)):
         """Lobes (fields (B, 1[, 3])) for a list of stacks; normalised (W1 = max W1 gamma')."""
         x = self(torch.as_tensor(np.asarray([features(s) for s in stacks]), dtype=tm.DTYPE))
-        return fit.lobes_from_vector(x[:, None, :], self.n_layers, split)
+        return lobes_for(x[:, None, :], batch_layers(stacks), split)
 
 
 def save(path, net, attrs, history, validation_index):
-    tmp = path + ".tmp"
-    with h5py.File(tmp, "w") as f:
+    with files.atomic_output(path) as tmp, h5py.File(tmp, "w") as f:
         f.attrs["mcref_format"] = FORMAT
         f.attrs["format_version"] = 1
         f.attrs["layers"] = net.n_layers
@@ -123,12 +146,11 @@ def save(path, net, attrs, history, validation_index):
         for k, v in history.items():
             f[f"history/{k}"] = np.asarray(v, dtype=np.float64)
         f["validation_index"] = np.asarray(validation_index, dtype=np.int64)
-    os.replace(tmp, path)
 
 
 def load(path):
     """(Mapping, attributes) from a weights file; errors name the file and what is wrong."""
-    with h5py.File(path, "r") as f:
+    with files.open_hdf5(path) as f:
         if f.attrs.get("mcref_format") != FORMAT:
             raise ValueError(f"{path}: not a network weights file (mcref_format = {FORMAT!r} expected)")
         if int(f.attrs["format_version"]) != 1 or list(f.attrs["hidden"]) != list(HIDDEN):

@@ -1,10 +1,14 @@
 #!/usr/bin/python3
 """SpongeCake's multiple-scattering lobes for new layer parameters (Wang et al. 2022,
 Sec. 5), from a trained network (train.py): reads the stack of an experiment file
-(geometry.layer, as mcref's slab experiments; no substrate) and prints the lobe
-parameters as JSON: per layer alpha', T', gamma' (RGB), f0' (RGB), and W1, W2, the
-Lambertian split. Evaluate the lobes with torch_model.multiple_scattering_lobes or
-mcref.sggx.spongecake_ms_bsdf.
+(geometry.layer, as mcref's slab experiments; homogeneous SGGX layers, no substrate)
+and prints the lobe parameters as JSON: per layer alpha', T', gamma' (RGB), f0' (RGB),
+and W1, W2, the Lambertian split. T' ("thickness") is the thickness of the modified
+layer at the layer's own density, as torch_model.multiple_scattering_lobes and
+mcref.sggx.spongecake_ms_bsdf apply it; "optical_thickness" is T' rho, what the network
+predicts (network.py): a layer given as (T, rho) or as (T/c, c rho) is the same medium
+and gets the same BSDF. Keys the lobes cannot represent (density_vdb, depth profiles,
+other phase functions, a substrate) are refused, naming the key.
 
   /usr/bin/python3 scripts/spongecake/predict.py NET.h5 EXPERIMENT.toml
 """
@@ -25,8 +29,12 @@ def main(argv=None):
     a = p.parse_args(argv)
     try:
         net, attrs = network.load(a.weights)
-        with open(a.experiment) as f:
-            layers = dataset.layers_from_config(f.read(), a.experiment)
+        try:
+            with open(a.experiment, "rb") as f:
+                text = f.read().decode()
+        except UnicodeDecodeError as e:
+            raise ValueError(f"{a.experiment}: not a UTF-8 text file ({e})") from None
+        layers = dataset.layers_from_config(text, a.experiment, for_network=True)
         if len(layers) != net.n_layers:
             raise ValueError(f"{a.experiment}: geometry.layer has {len(layers)} layers; the network of {a.weights} "
                              f"takes {net.n_layers}")
@@ -36,9 +44,12 @@ def main(argv=None):
     split = tuple(float(v) for v in attrs["split"])
     lobes = net.lobes([layers], split)
     flat = lambda t: [float(v) for v in t.reshape(-1)]  # noqa: E731
-    print(json.dumps({"alpha": [flat(v)[0] for v in lobes.alpha], "thickness": [flat(v)[0] for v in lobes.thickness],
+    thickness = [flat(v)[0] for v in lobes.thickness]
+    print(json.dumps({"alpha": [flat(v)[0] for v in lobes.alpha], "thickness": thickness,
+                      "optical_thickness": [t * l.density for t, l in zip(thickness, layers)],
                       "albedo": [flat(v) for v in lobes.albedo], "f0": [flat(v) for v in lobes.f0],
-                      "w1": flat(lobes.w1)[0], "w2": flat(lobes.w2)[0], "split": list(split)}, indent=1))
+                      "w1": flat(lobes.w1)[0], "w2": flat(lobes.w2)[0], "split": list(split)}, indent=1,
+                     allow_nan=False))
     return 0
 
 

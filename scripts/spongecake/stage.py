@@ -44,7 +44,7 @@ import h5py
 HERE = os.path.dirname(os.path.abspath(__file__))
 if __package__ in (None, ""):
     sys.path.insert(0, os.path.dirname(HERE))
-from spongecake import dataset, errors, fit_dataset, network  # noqa: E402
+from spongecake import dataset, errors, files, fit, fit_dataset, network  # noqa: E402
 from spongecake.train import is_validation  # noqa: E402
 
 FORMAT = "mcref-spongecake-summary"
@@ -70,8 +70,8 @@ def read_stage(path):
     if unknown:
         raise StageError(f"{path}: {sorted(unknown)[0]}: not a stage key (allowed: seed, network, materials)")
     seed = cfg.get("seed", 1)
-    if not isinstance(seed, int) or seed < 0:
-        raise StageError(f"{path}: seed = {seed!r} (allowed: an integer >= 0)")
+    if not isinstance(seed, int) or isinstance(seed, bool) or not fit.SEED_RANGE[0] <= seed <= fit.SEED_RANGE[1]:
+        raise StageError(f"{path}: seed = {seed!r} (allowed: an integer in [0, 2^64 - 1], what torch takes)")
     names = set()
 
     def check(kind, i, t, keys, required):
@@ -240,6 +240,17 @@ def scale(data_path, fits_path, weights_path):
     return out
 
 
+def check_outputs(out, sets, inputs):
+    """Before any step: none of the files the stage writes into OUT is one of its inputs."""
+    names = ["summary.json", "stage.json"] + [f"{t['name']}{k}" for t in sets for k in (
+        ".h5", "_fits.h5", "_net.h5", "_summary.json", "_bsdf.png", "_lobes.png", "_errors.png")]
+    for name in names:
+        for key, path in inputs:
+            if files.same_file(os.path.join(out, name), path):
+                raise StageError(f"{os.path.join(out, name)}: an output of the stage is the input {key} {path} "
+                                 "(allowed: an OUTDIR holding none of the inputs)")
+
+
 METHODS = ("network", "fit", "lambert", "none", "noise", "sscheck")
 
 
@@ -277,6 +288,10 @@ def main(argv=None):
         out = os.path.abspath(a.out)
         if not os.path.isdir(os.path.dirname(out)):
             raise StageError(f"{a.out}: its directory {os.path.dirname(out)} does not exist")
+        if os.path.lexists(out) and not os.path.isdir(out):
+            raise StageError(f"{a.out}: exists and is not a directory (allowed: a directory, or a new name)")
+        check_outputs(out, nets + mats, [("STAGE.toml", a.stage), ("--mcref", a.mcref)] +
+                      [(f"{t['name']}.dataset", t["dataset"]) for t in nets + mats])
         os.makedirs(out, exist_ok=True)
     except StageError as e:
         print(f"stage: {e}", file=sys.stderr)

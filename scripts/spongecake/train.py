@@ -21,7 +21,8 @@ moves (validate/FINDINGS.md): give it hundreds of epochs.
 
   /usr/bin/python3 scripts/spongecake/train.py DATA.h5 -o NET.h5 [--epochs 50] [--seed 1]
       [--lr 1e-3] [--batch 32] [--cells K] [--split R,T] [--fits FITS.h5] [--stream] [--quiet]
---fits: a fit_dataset.py file of the same dataset, for the floor on the held-out entries.
+--fits: a fit_dataset.py file of the same dataset and Lambertian split, for the floor on
+the held-out entries. Every input and output is checked before the training starts.
 """
 import argparse
 import os
@@ -32,7 +33,7 @@ import torch
 
 if __package__ in (None, ""):
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from spongecake import dataset, errors, fit, fit_dataset, network  # noqa: E402
+from spongecake import dataset, errors, files, fit, fit_dataset, network  # noqa: E402
 from spongecake import torch_model as tm  # noqa: E402
 
 
@@ -43,12 +44,18 @@ def is_validation(index):
 
 def load_dataset(path, stream=False):
     """(indices, stacks, wi, wo, ms) of every entry, ms a dataset.EntryStore (held in memory,
-    or read per request with stream=True). Every entry is checked first (dataset.check_entry):
-    one layer count, one set of cells, the total tables present."""
+    or read per request with stream=True). Every entry is checked first (check_dataset)."""
+    indices, stacks, wi, wo = check_dataset(path)
+    return indices, stacks, wi, wo, dataset.EntryStore(path, indices, stream)
+
+
+def check_dataset(path):
+    """(indices, stacks, wi, wo) of every entry, reading no table values (dataset.check_entry):
+    one layer count, one set of cells, the total tables present, T rho > 0."""
     indices = dataset.entry_indices(path)
     stacks, wi, wo = [], None, None
     for i in indices:
-        layers, e_wi, e_wo, has_total = dataset.check_entry(path, i)
+        layers, e_wi, e_wo, has_total = dataset.check_entry(path, i, for_network=True)
         if not has_total:
             raise ValueError(f"{path}: entry {i}: needs the total tables brdf and brdf_btdf (the dataset's `tables`)")
         if stacks and len(layers) != len(stacks[0]):
@@ -59,8 +66,7 @@ def load_dataset(path, stream=False):
         elif not (np.array_equal(e_wi, wi) and np.array_equal(e_wo, wo)):
             raise ValueError(f"{path}: entry {i} has other directions than entry {indices[0]}")
         stacks.append(layers)
-    return (indices, stacks, torch.as_tensor(wi, dtype=tm.DTYPE), torch.as_tensor(wo, dtype=tm.DTYPE),
-            dataset.EntryStore(path, indices, stream))
+    return indices, stacks, torch.as_tensor(wi, dtype=tm.DTYPE), torch.as_tensor(wo, dtype=tm.DTYPE)
 
 
 def _ms(ms, rows, cells=slice(None)):
@@ -72,7 +78,7 @@ def batch_loss(net, stacks, wi, wo, ms, split):
     """The paper's loss on a mini-batch: mean |lobes - ms| over entries, cells, channels."""
     layers = network.batch_layers(stacks)
     x = net(torch.as_tensor(np.asarray([network.features(s) for s in stacks]), dtype=tm.DTYPE))
-    lobes = fit.lobes_from_vector(x[:, None, :], net.n_layers, split, normalise=False)
+    lobes = network.lobes_for(x[:, None, :], layers, split, normalise=False)
     return torch.abs(tm.multiple_scattering_lobes(layers, lobes, wi, wo) - ms).mean(dim=(-2, -1))
 
 
@@ -115,15 +121,24 @@ def evaluate(net, stacks, wi, wo, ms, rows, split=(1.0, 1.0), chunk=1):
                           for b in range(0, len(rows), chunk)])
 
 
-def held_out_rows(path, indices, losses, val_rows, fits_path, attrs, split):
+def read_floor(fits_path, data_path, attrs, split, n_layers):
+    """{entry index: fit loss} of a fits file (--fits), checked to come from the dataset
+    (its SHA-256) with the same Lambertian split and layer count; {} without one."""
+    if not fits_path:
+        return {}
+    d, fattrs = fit_dataset.read(fits_path)
+    if fattrs.get("dataset_sha256") != attrs["dataset_sha256"]:
+        raise ValueError(f"--fits {fits_path}: dataset_sha256 = {fattrs.get('dataset_sha256')!r} (allowed: the "
+                         f"SHA-256 of {data_path}, {attrs['dataset_sha256']}: fits of that dataset)")
+    fit_dataset.check_split(fits_path, fattrs, split, "--split")
+    if int(fattrs.get("layers", n_layers)) != n_layers:
+        raise ValueError(f"--fits {fits_path}: layers = {fattrs['layers']} (allowed: {n_layers}, the dataset's)")
+    return dict(zip((int(i) for i in d["index"]), d["loss"]))
+
+
+def held_out_rows(path, indices, losses, val_rows, floor, split):
     """errors.entry_row per held-out entry (read one at a time): the network, the per-material
-    fit (when a fits file of the same dataset is given), the Lambertian lobe alone."""
-    floor = {}
-    if fits_path:
-        d, fattrs = fit_dataset.read(fits_path)
-        if fattrs.get("dataset_sha256") != attrs["dataset_sha256"]:
-            raise ValueError(f"--fits {fits_path}: made from another dataset (dataset_sha256 differs)")
-        floor = dict(zip((int(i) for i in d["index"]), d["loss"]))
+    fit (where `floor`, read_floor's, has the entry), the Lambertian lobe alone."""
     out = []
     for r, loss in zip(val_rows, losses):
         i = indices[r]
@@ -158,20 +173,20 @@ def main(argv=None):
         for key, v in (("--epochs", a.epochs), ("--batch", a.batch), ("--cells", 1 if a.cells is None else a.cells)):
             if v < 1:
                 raise ValueError(f"{key} = {v} (allowed: >= 1)")
-        if not (a.lr > 0 and np.isfinite(a.lr)) or a.seed < 0:
-            raise ValueError(f"--lr = {a.lr}, --seed = {a.seed} (allowed: lr > 0, seed >= 0)")
-        out_dir = os.path.dirname(os.path.abspath(a.output))
-        if not os.path.isdir(out_dir):
-            raise ValueError(f"-o {a.output}: directory {out_dir} does not exist")
-        if os.path.abspath(a.output) == os.path.abspath(a.data):
-            raise ValueError(f"-o {a.output}: is the dataset itself")
-        indices, stacks, wi, wo, ms = load_dataset(a.data, a.stream)
+        if not (a.lr > 0 and np.isfinite(a.lr)):
+            raise ValueError(f"--lr = {a.lr} (allowed: a finite number > 0)")
+        fit.check_seed(a.seed)
+        files.check_outputs([("-o", a.output)], [("DATA.h5", a.data), ("--fits", a.fits)])
+        indices, stacks, wi, wo = check_dataset(a.data)
         attrs = dataset.provenance(a.data)
-        if a.fits:
-            fit_dataset.read(a.fits)
+        floor = read_floor(a.fits, a.data, attrs, a.split, len(stacks[0]))
+        if all(is_validation(i) for i in indices):
+            raise ValueError(f"{a.data}: entries {indices} are all held out (index % 10 == 9; allowed: a dataset "
+                             "with training entries)")
     except (OSError, KeyError, ValueError) as e:
         print(f"train: {e}", file=sys.stderr)
         return 2
+    ms = dataset.EntryStore(a.data, indices, a.stream)
     val_rows = [r for r, i in enumerate(indices) if is_validation(i)]
     train_rows = [r for r, i in enumerate(indices) if not is_validation(i)]
     net, history = train(stacks, wi, wo, ms, train_rows, val_rows, a.epochs, a.seed, a.lr, a.batch, a.cells, a.split,
@@ -184,7 +199,7 @@ def main(argv=None):
     network.save(a.output, net, attrs, history, [indices[r] for r in val_rows])
     if val_rows:
         rows = held_out_rows(a.data, indices, evaluate(net, stacks, wi, wo, ms, val_rows, a.split), val_rows,
-                             a.fits, attrs, a.split)
+                             floor, a.split)
         methods = ["network"] + (["fit"] if all("fit_ms" in r for r in rows) else []) + ["lambert", "none"]
         print(f"held-out entries ({len(val_rows)}):")
         print(errors.report(rows, methods + ["noise", "sscheck"], "ms"))
