@@ -133,6 +133,23 @@ inline double student_t_cdf(double t, double nu) {
 
 inline double chi2_survival(double x, double k) { return regularized_gamma_q(k / 2, x / 2); }
 
+// Probability-preserving map of a Student-t value with nu degrees of freedom to
+// N(0, 1), made on the tail P(T > |t|) = I_{nu/(nu+t^2)}(nu/2, 1/2) / 2 for
+// precision; t itself for nu >= 1e7, or where the tail is beyond double range.
+inline double t_to_normal(double t, double nu) {
+  if (!(nu < 1e7)) return t;
+  const double tail = 0.5 * regularized_beta(nu / (nu + t * t), nu / 2, 0.5);
+  const double z = std::copysign(-normal_quantile(tail), t);
+  return std::isfinite(z) ? z : t;
+}
+
+// Welch–Satterthwaite degrees of freedom of the difference of two means with
+// standard errors a and b from na and nb samples (batches).
+inline double welch_dof(double a, double b, double na, double nb) {
+  const double a2 = a * a, b2 = b * b;
+  return (a2 + b2) * (a2 + b2) / (a2 * a2 / (na - 1) + b2 * b2 / (nb - 1));
+}
+
 inline double sidak_z_bound(double alpha, double n) {
   const double per_cell = -std::expm1(std::log1p(-alpha) / n);
   return normal_quantile(1 - per_cell / 2);

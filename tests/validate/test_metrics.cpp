@@ -151,9 +151,17 @@ TEST(Metrics, IdenticallyZeroIsNotApplicable) {
   const Comparison noisy = compare(zeros, {0.0, 0.1, 0.0, 0.0}, zeros, 32);
   EXPECT_FALSE(noisy.identically_zero);
   EXPECT_EQ(judge(noisy, true, 1e-3, 0).status, "pass");
-  // No model value at all, or empty simulated cells: not n/a either.
+  // No model value at all: not n/a either.
   EXPECT_EQ(judge(compare(zeros, zeros, std::vector<double>(4, nan), 32), true, 1e-3, 0).status, "FAIL");
-  EXPECT_FALSE(compare({0.0, nan, 0.0, 0.0}, {0.0, nan, 0.0, 0.0}, zeros, 32).identically_zero);
+  // Zeros on both sides beside an empty cell (NaN: a batch had no sample): still
+  // nothing to check, so n/a, naming the empty cell (it was a "pass" on 0 vs 0).
+  const Comparison with_empty = compare({0.0, nan, 0.0, 0.0}, {0.0, nan, 0.0, 0.0}, zeros, 32);
+  EXPECT_TRUE(with_empty.identically_zero);
+  const Verdict v = judge(with_empty, true, 1e-3, 0);
+  EXPECT_EQ(v.status, "n/a");
+  EXPECT_NE(v.reason.find("1 empty cells"), std::string::npos) << v.reason;
+  // An empty cell where the model is not zero: an ordinary check (not n/a).
+  EXPECT_FALSE(compare({0.0, nan, 0.0, 0.0}, {0.0, nan, 0.0, 0.0}, {0.0, 0.5, 0.0, 0.0}, 32).identically_zero);
   EXPECT_FALSE(compare(zeros, zeros, {0.0, 0.0, std::numeric_limits<double>::infinity(), 0.0}, 32).identically_zero);
 }
 

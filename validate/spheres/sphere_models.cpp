@@ -172,7 +172,7 @@ std::vector<ModelInfo> model_list() {
 
 // The volumetric counterpart of the experiment's packing, simulated through
 // the public entry point (cached per configuration and table).
-std::vector<double> volumetric_values(const Table& t, const Experiment& ex) {
+const Table& volumetric_table(const Table& t, const Experiment& ex) {
   static std::mutex mutex;
   static std::map<std::string, std::vector<Table>> cache;
   std::lock_guard<std::mutex> lock(mutex);
@@ -194,7 +194,7 @@ std::vector<double> volumetric_values(const Table& t, const Experiment& ex) {
     it = cache.emplace(key, simulate(v, o)).first;
   }
   for (const Table& r : it->second)
-    if (r.name == t.name) return r.values();
+    if (r.name == t.name) return r;
   throw std::invalid_argument("volumetric_mc: the volumetric run has no table " + t.name);
 }
 
@@ -387,10 +387,18 @@ std::vector<double> evaluate(const std::string& model, const Table& t, const Exp
   if (model == "phase_three_term") return phase_three_term_values(t);
   if (t.quantity == "brdf_modes") return mode_values(mode_model(model), t, ex);
   if (t.quantity == "spherical_albedo") return kd_values(model, t, ex);
-  if (model == "volumetric_mc") return volumetric_values(t, ex);
+  if (model == "volumetric_mc") return volumetric_table(t, ex).values();
   if (model == "albedo_reference_three_term") return albedo_values(brdf_model("reference_three_term"), t, ex);
   if (model == "albedo_deon_corrected") return albedo_values(brdf_model("deon_corrected"), t, ex);
   return brdf_values(brdf_model(model), t, ex);
+}
+
+// volumetric_mc is a simulation itself: its standard errors enter the checks in
+// quadrature (validate/metrics.h); the other models have no noise of their own.
+std::vector<double> evaluate_stderr(const std::string& model, const Table& t, const Experiment& ex,
+                                    const std::vector<double>&) {
+  if (model != "volumetric_mc") return {};
+  return volumetric_table(t, ex).stderrs();
 }
 
 std::string unsupported(const std::string& model, const Experiment& ex) {
@@ -402,7 +410,7 @@ std::string unsupported(const std::string& model, const Experiment& ex) {
 }  // namespace
 
 const ModelFamily& sphere_models() {
-  static const ModelFamily family{model_list(), evaluate, nullptr, unsupported};
+  static const ModelFamily family{model_list(), evaluate, evaluate_stderr, unsupported};
   return family;
 }
 
