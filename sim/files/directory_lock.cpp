@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -35,7 +36,11 @@ DirectoryLock::DirectoryLock(const std::string& dir, const std::string& output, 
       if (e == EWOULDBLOCK)
         throw ConfigError(output, flag, "another process is writing this output (it holds the lock on " + dir +
                                             "); wait for it to end, or choose another " + flag);
-      throw std::runtime_error(dir + ": cannot lock the directory: " + std::strerror(e));
+      // A file system without flock (Lustre mounted without -o flock: ENOSYS):
+      // the run goes on unguarded, and says so.
+      std::fprintf(stderr, "mcref: warning: %s: cannot lock the directory (%s); a second process given this output "
+                   "would not be refused\n", dir.c_str(), std::strerror(e));
+      return;
     }
     struct stat held {}, named {};
     if (fstat(fd, &held) == 0 && stat(dir.c_str(), &named) == 0 && held.st_dev == named.st_dev &&
@@ -51,7 +56,7 @@ DirectoryLock::DirectoryLock(const std::string& dir, const std::string& output, 
 DirectoryLock::~DirectoryLock() {
   std::error_code ec;
   if (fs::is_empty(dir_, ec) && !ec) fs::remove(dir_, ec);  // before unlocking: another process then makes its own
-  close(fd_);
+  if (fd_ >= 0) close(fd_);
 }
 
 }  // namespace mcref

@@ -13,6 +13,7 @@ class DirectoryLock {
  public:
   // Creates `dir` if missing and locks it. ConfigError naming `output` and
   // `dir` if another process holds the lock (flag: the option naming output).
+  // Where the file system cannot lock (no flock), warns and goes on unlocked.
   DirectoryLock(const std::string& dir, const std::string& output, const std::string& flag);
   ~DirectoryLock();  // unlocks; removes `dir` if it is empty
   DirectoryLock(const DirectoryLock&) = delete;

@@ -1,5 +1,6 @@
 #include "sim/parallel/communicator.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <exception>
@@ -59,6 +60,23 @@ void wait_for(MPI_Request& request, const char* what) {
   });
 }
 
+// MPI counts are ints: a message goes as its size, then pieces of at most
+// 1 GiB (MCREF_MPI_PIECE_BYTES, for tests: smaller pieces, the same bytes).
+std::size_t piece_bytes() {
+  static const std::size_t bytes = [] {
+    const char* v = std::getenv("MCREF_MPI_PIECE_BYTES");
+    const long long b = v ? std::atoll(v) : 0;
+    return b > 0 && b <= (1LL << 30) ? static_cast<std::size_t>(b) : std::size_t(1) << 30;
+  }();
+  return bytes;
+}
+
+// Calls op(offset, count) for each piece of a message of n bytes.
+template <class Op>
+void for_each_piece(std::size_t n, const Op& op) {
+  for (std::size_t at = 0; at < n; at += piece_bytes()) op(at, static_cast<int>(std::min(piece_bytes(), n - at)));
+}
+
 // Rank `root`'s text on every rank.
 void broadcast_from(int root, std::string& text) {
   unsigned long long n = text.size();
@@ -66,8 +84,10 @@ void broadcast_from(int root, std::string& text) {
   check(MPI_Ibcast(&n, 1, MPI_UNSIGNED_LONG_LONG, root, MPI_COMM_WORLD, &request), "MPI_Ibcast");
   wait_for(request, "MPI_Ibcast");
   text.resize(n);
-  check(MPI_Ibcast(text.data(), static_cast<int>(n), MPI_BYTE, root, MPI_COMM_WORLD, &request), "MPI_Ibcast");
-  wait_for(request, "MPI_Ibcast");
+  for_each_piece(n, [&](std::size_t at, int count) {
+    check(MPI_Ibcast(text.data() + at, count, MPI_BYTE, root, MPI_COMM_WORLD, &request), "MPI_Ibcast");
+    wait_for(request, "MPI_Ibcast");
+  });
 }
 #endif
 
@@ -88,9 +108,14 @@ const Communicator& Communicator::world() {
 void Communicator::send(int to, int tag, const std::string& bytes) const {
   if (!mpi_) no_mpi();
   // A large message waits for the receiver to be ready: sleep meanwhile.
+  unsigned long long n = bytes.size();
   MPI_Request request;
-  check(MPI_Isend(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, to, tag, MPI_COMM_WORLD, &request), "MPI_Isend");
+  check(MPI_Isend(&n, 1, MPI_UNSIGNED_LONG_LONG, to, tag, MPI_COMM_WORLD, &request), "MPI_Isend");
   wait_for(request, "MPI_Isend");
+  for_each_piece(n, [&](std::size_t at, int count) {
+    check(MPI_Isend(bytes.data() + at, count, MPI_BYTE, to, tag, MPI_COMM_WORLD, &request), "MPI_Isend");
+    wait_for(request, "MPI_Isend");
+  });
 }
 
 bool Communicator::pending(int from, int tag) const {
@@ -109,10 +134,16 @@ std::string Communicator::receive(int from, int tag, int* sender) const {
     check(MPI_Iprobe(from == kAnyRank ? MPI_ANY_SOURCE : from, tag, MPI_COMM_WORLD, &flag, &st), "MPI_Iprobe");
     return flag != 0;
   });
-  int count = 0;
-  check(MPI_Get_count(&st, MPI_BYTE, &count), "MPI_Get_count");
-  std::string bytes(static_cast<std::size_t>(count), '\0');
-  check(MPI_Recv(bytes.data(), count, MPI_BYTE, st.MPI_SOURCE, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
+  // The size, then the pieces from the same rank (in order: MPI does not
+  // let messages of one sender and tag overtake each other).
+  unsigned long long n = 0;
+  check(MPI_Recv(&n, 1, MPI_UNSIGNED_LONG_LONG, st.MPI_SOURCE, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE), "MPI_Recv");
+  std::string bytes(static_cast<std::size_t>(n), '\0');
+  for_each_piece(n, [&](std::size_t at, int count) {
+    MPI_Request request;
+    check(MPI_Irecv(bytes.data() + at, count, MPI_BYTE, st.MPI_SOURCE, tag, MPI_COMM_WORLD, &request), "MPI_Irecv");
+    wait_for(request, "MPI_Irecv");
+  });
   if (sender) *sender = st.MPI_SOURCE;
   return bytes;
 }

@@ -32,6 +32,8 @@ class Communicator {
 
   // Point to point; `tag` keeps message kinds apart. Returns once `bytes`
   // may be reused; the sending rank sleeps while the receiver is not ready.
+  // Any size: sent as its size, then pieces of at most 1 GiB (MPI counts are
+  // int; MCREF_MPI_PIECE_BYTES sets smaller pieces, for tests).
   void send(int to, int tag, const std::string& bytes) const;
   // Waits for a message from `from` (or kAnyRank) with `tag`; the waiting rank
   // sleeps between polls, so it leaves its core to the threads that compute.

@@ -51,7 +51,9 @@ TEST_F(SimulateMpi, RanksGiveTheBytesOfOneProcess) {
     ASSERT_EQ(shell(dir_ / "one", "SOURCE_DATE_EPOCH=1 " + mcref(args), &err), 0) << err;
     for (int n : {2, 3}) {
       fs::remove(dir_ / "ranks" / "t.h5");
-      ASSERT_EQ(shell(dir_ / "ranks", "SOURCE_DATE_EPOCH=1 " + mcref_ranks(n, args), &err), 0) << err;
+      // On 3 ranks the messages go in pieces of 4 kB (1 GiB in use: MPI counts are int).
+      const std::string pieces = n == 3 ? "MCREF_MPI_PIECE_BYTES=4096 " : "";
+      ASSERT_EQ(shell(dir_ / "ranks", "SOURCE_DATE_EPOCH=1 " + pieces + mcref_ranks(n, args), &err), 0) << err;
       EXPECT_EQ(rank_codes(dir_ / "ranks", n), std::vector<int>(static_cast<std::size_t>(n), 0));
       EXPECT_EQ(shell(dir_, "cmp one/t.h5 ranks/t.h5", nullptr), 0) << c.experiment << " on " << n << " ranks";
     }
