@@ -150,8 +150,11 @@ inline double welch_dof(double a, double b, double na, double nb) {
   return (a2 + b2) * (a2 + b2) / (a2 * a2 / (na - 1) + b2 * b2 / (nb - 1));
 }
 
+// Šidák: the level of each of n tests for a family-wise level alpha, 1 - (1 - alpha)^(1/n).
+inline double sidak_per_test(double alpha, double n) { return -std::expm1(std::log1p(-alpha) / n); }
+
 inline double sidak_z_bound(double alpha, double n) {
-  const double per_cell = -std::expm1(std::log1p(-alpha) / n);
+  const double per_cell = sidak_per_test(alpha, n);
   return normal_quantile(1 - per_cell / 2);
 }
 

@@ -51,7 +51,7 @@ BrdfInterpolation::BrdfInterpolation(const Table& t, const std::string& file) {
   ti_ = positions(t.axes[0], refuse);  // (theta_i given as bins: at their centres; it read past the points)
   to_ = positions(t.axes[2], refuse);
   ph_ = positions(t.axes[3], refuse);
-  positions(t.axes[1], refuse);
+  positions(t.axes[1], refuse);  // phi_i: checked only (one point, below)
   if (t.axes[1].size() != 1) refuse("has " + std::to_string(t.axes[1].size()) + " incident azimuths; MERL holds isotropic BRDFs (one phi_i)");
   if (t.axes[3].values.back() - t.axes[3].values.front() > kPi + 1e-9)
     refuse("is anisotropic (phi over [0, 2 pi), from an anisotropic medium); MERL holds isotropic BRDFs (phi over [0, pi])");

@@ -146,7 +146,7 @@ TEST(SpheresTransport, DiluteLimitMatchesVolumetric) {
   // 1e-3 after Šidák over the 6 (table, channel) pairs. A cell without an error
   // bar on either side (the same value in every batch) is not applicable if both
   // sides agree exactly, and a failure otherwise.
-  const double alpha = -std::expm1(std::log1p(-1e-3) / 6);
+  const double alpha = sidak_per_test(1e-3, 6);
   for (const std::string name : {"brdf_albedo", "brdf"}) {
     const Table& p = find(packing, name);
     const Table& v = find(volume, name);
