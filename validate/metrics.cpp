@@ -5,11 +5,14 @@
 
 #include "models/core/fp_mode.h"
 #include "models/core/statistics.h"
+#include "validate/cell_correlation.h"
+#include "validate/sign_flip.h"
 
 namespace mcref {
 
 Comparison compare(const std::vector<double>& sim, const std::vector<double>& se, const std::vector<double>& model,
-                   long long batches, const std::vector<double>& model_se, std::size_t channels) {
+                   long long batches, const std::vector<double>& model_se, std::size_t channels,
+                   const std::vector<double>& batch_values) {
   const IeeeDenormals ieee;  // the same z and p-value on every thread (models/core/fp_mode.h)
   Comparison c;
   c.z.assign(sim.size(), NAN);
@@ -18,6 +21,9 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
   channels = channels > 0 ? channels : 1;
   std::vector<double> channel_chi2(channels, 0.0);
   std::vector<std::size_t> channel_cells(channels, 0);
+  // Each channel's compared cells, and the share of their z variance that is the simulation's.
+  std::vector<std::vector<std::size_t>> compared(channels);
+  std::vector<std::vector<double>> sim_share(channels);
   std::size_t zero_pairs = 0, nonzero = 0;  // for identically_zero
   for (std::size_t i = 0; i < sim.size(); ++i) {
     if (sim[i] == 0 && se[i] == 0 && (model[i] == 0 || std::isnan(model[i]))) zero_pairs += model[i] == 0;
@@ -52,6 +58,8 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
     c.chi2 += z * z;
     channel_chi2[i % channels] += z * z;
     ++channel_cells[i % channels];
+    compared[i % channels].push_back(i);
+    sim_share[i % channels].push_back(1 / std::sqrt(r));
     if (std::fabs(z) > c.max_abs_z) {
       c.max_abs_z = std::fabs(z);
       c.worst_cell = i;
@@ -64,19 +72,50 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
     }
   }
   c.identically_zero = zero_pairs > 0 && nonzero == 0;
+  const bool have_batches = batches >= 3 && batch_values.size() == static_cast<std::size_t>(batches) * sim.size();
+  bool model_noise = false;
+  for (const std::vector<double>& share : sim_share)
+    for (double w : share) model_noise = model_noise || w < 1;
+  if (have_batches)
+    c.joint_test = !model_noise && batches >= kMinFlipBatches && batches <= kMaxFlipBatches ? "sign-flip" : "Box";
   double p_min = 1;
   for (std::size_t k = 0; k < channels; ++k)
     if (channel_cells[k] > 0) {
       ++c.channels;
-      p_min = std::fmin(p_min, chi2_survival(channel_chi2[k], static_cast<double>(channel_cells[k])));
+      // Box: chi2 ~ scale chi2(dof), scale = tr(R^2) / cells, dof = cells^2 / tr(R^2).
+      const double cells = static_cast<double>(channel_cells[k]);
+      const double trace =
+          have_batches ? correlation_square_trace(batch_values, sim.size(), batches, compared[k], sim_share[k]) : cells;
+      const double scale = trace / cells, dof = cells * cells / trace;
+      c.effective_dof += dof;
+      p_min = std::fmin(p_min, c.joint_test == "sign-flip"
+                                   ? sign_flip_p_value(batch_values, sim.size(), batches, compared[k], model)
+                                   : chi2_survival(channel_chi2[k] / scale, dof));
     }
+  if (c.joint_test == "sign-flip") c.smallest_p = std::fmin(1.0, sign_flip_smallest_p(batches) * static_cast<double>(c.channels));
   c.p_value = std::fmin(1.0, p_min * static_cast<double>(c.channels > 0 ? c.channels : 1));
   c.rms_rel_error = c.signal_cells ? std::sqrt(rel2 / c.signal_cells) : 0;
   return c;
 }
 
+namespace {
+
+// How the joint test was made, for the verdict's reason.
+std::string joint_text(const Comparison& c) {
+  char buf[160];
+  if (c.joint_test == "sign-flip")
+    std::snprintf(buf, sizeof buf, "sign-flip test over the batches; %.3g independent cells' worth", c.effective_dof);
+  else if (c.joint_test == "Box")
+    std::snprintf(buf, sizeof buf, "chi2 with %.3g effective dof from the batches' correlation (Box)", c.effective_dof);
+  else
+    std::snprintf(buf, sizeof buf, "chi2 with the cells taken as independent: no batch values");
+  return buf;
+}
+
+}  // namespace
+
 Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance) {
-  char buf[256];
+  char buf[512];
   if (c.identically_zero) {
     std::snprintf(buf, sizeof buf, "simulation and model are zero in all %zu cells that have a model value: nothing to check",
                   c.exact_cells);
@@ -108,14 +147,20 @@ Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance) {
     note = "; " + std::to_string(c.mismatched_exact_cells) + " zero-variance cells differ slightly or are empty (not judged)";
   if (c.empty_cells > 0) note += "; " + std::to_string(c.empty_cells) + " empty cells (NaN: a batch had no sample) not compared";
   if (c.model_undefined > 0) note += "; model undefined on " + std::to_string(c.model_undefined) + " cells";
+  if (exact && c.smallest_p > alpha) {
+    std::snprintf(buf, sizeof buf, "; the sign-flip test cannot give p below %.2g (too few batches for this significance)",
+                  c.smallest_p);
+    note += buf;
+  }
   if (exact) {
     const double bound = sidak_z_bound(alpha, static_cast<double>(c.cells));
     if (c.p_value < alpha) {
-      // The chi2 treats the cells as independent; they share batches (README, "Verdicts"): say
-      // whether the |z| bound, valid whatever the correlation, agrees.
-      std::snprintf(buf, sizeof buf, "chi2/dof = %.3g over %zu cells, p = %.2g < %.2g%s; max |z| = %.2f %s %.2f", c.chi2_per_dof(),
-                    c.cells, c.p_value, alpha, c.channels > 1 ? " (worst channel's p, Bonferroni over channels)" : "",
-                    c.max_abs_z, c.max_abs_z > bound ? ">" : "<=", bound);
+      // Say how the chi2's dof were set, and whether the |z| bound (valid whatever the
+      // correlation) agrees.
+      std::snprintf(buf, sizeof buf, "chi2/dof = %.3g over %zu cells (%s), p = %.2g < %.2g%s; max |z| = %.2f %s %.2f",
+                    c.chi2_per_dof(), c.cells, joint_text(c).c_str(), c.p_value, alpha,
+                    c.channels > 1 ? " (worst channel's p, Bonferroni over channels)" : "", c.max_abs_z,
+                    c.max_abs_z > bound ? ">" : "<=", bound);
       return {"FAIL", buf + note};
     }
     if (c.max_abs_z > bound) {
@@ -123,7 +168,8 @@ Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance) {
                     alpha, c.cells);
       return {"FAIL", buf + note};
     }
-    std::snprintf(buf, sizeof buf, "p = %.2g >= %.2g; max |z| = %.2f <= %.2f", c.p_value, alpha, c.max_abs_z, bound);
+    std::snprintf(buf, sizeof buf, "p = %.2g >= %.2g (%s); max |z| = %.2f <= %.2f", c.p_value, alpha, joint_text(c).c_str(),
+                  c.max_abs_z, bound);
     return {"pass", buf + note};
   }
   if (tolerance > 0 && c.signal_cells == 0) return {"FAIL", "no cell has enough signal (|sim| > 5 stderr) to check the tolerance" + note};

@@ -28,6 +28,15 @@ struct Comparison {
   // Such a check cannot fail (e.g. an all-zero delta table against a model
   // without a delta lobe): judged "n/a".
   bool identically_zero = false;
+  // How p_value was found: "sign-flip" (validate/sign_flip.h), "Box" (the chi2
+  // against Box's approximation, validate/cell_correlation.h) or "independent"
+  // (the chi2 with the cells taken as independent: no batch values).
+  std::string joint_test = "independent";
+  double smallest_p = 0;  // the smallest p_value the test can give (sign-flip), else 0
+  // Independent cells' worth, summed over channels: each channel's cells^2 /
+  // tr(R^2), R the cells' correlation estimated from the batch values, else
+  // its cell count.
+  double effective_dof = 0;
   std::vector<double> z;         // per cell (NaN where not compared)
   double chi2_per_dof() const { return cells ? chi2 / static_cast<double>(cells) : 0; }
 };
@@ -47,9 +56,17 @@ struct Comparison {
 // count one deviation up to `channels` times. p_value then tests each channel
 // by its own chi2 and takes the smallest p times the channel count
 // (Bonferroni: valid whatever the correlation; issue #15).
+// `batch_values` (optional: batches x cells, Table::batch_values): the cells
+// share batches and are correlated, so each channel's p comes from the batches
+// themselves: with kMinFlipBatches to kMaxFlipBatches batches and a model
+// without noise of its own, the sign-flip test (validate/sign_flip.h, exact
+// whatever the correlation); otherwise, from 3 batches, the chi2 against Box's
+// approximation c chi2(nu), the correlation estimated from the batches
+// (validate/cell_correlation.h). Without batch values the cells are taken as
+// independent (c = 1, nu = cells).
 Comparison compare(const std::vector<double>& sim, const std::vector<double>& stderr_,
                    const std::vector<double>& model, long long batches, const std::vector<double>& model_se = {},
-                   std::size_t channels = 1);
+                   std::size_t channels = 1, const std::vector<double>& batch_values = {});
 
 struct Verdict {
   std::string status;  // "pass", "FAIL", "measured" (approximate model, no tolerance)

@@ -60,7 +60,9 @@ std::string results_json(const Suite& suite, const std::vector<CaseResult>& resu
         << ", \"description\": " << json_string(r.model_description) << ", \"tolerance\": " << json_number(r.tolerance)
         << ", \"status\": " << json_string(r.verdict.status) << ", \"reason\": " << json_string(r.verdict.reason)
         << ", \"cells\": " << m.cells << ", \"chi2_per_dof\": " << json_number(m.chi2_per_dof())
-        << ", \"p_value\": " << json_number(m.p_value) << ", \"max_abs_z\": " << json_number(m.max_abs_z)
+        << ", \"p_value\": " << json_number(m.p_value) << ", \"joint_test\": " << json_string(m.joint_test)
+        << ", \"effective_dof\": " << json_number(m.effective_dof)
+        << ", \"max_abs_z\": " << json_number(m.max_abs_z)
         << ", \"max_rel_error\": " << json_number(m.max_rel_error) << ", \"rms_rel_error\": " << json_number(m.rms_rel_error);
       const ModelAccuracy& a = r.accuracy;
       if (a.integrals > 0)

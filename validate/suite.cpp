@@ -146,6 +146,7 @@ TableFile tables_for(const Case& c, const Experiment& ex, const SuiteOptions& o,
   so.quiet = o.quiet;
   so.ranks = o.ranks;
   so.label = "[" + std::to_string(k + 1) + "/" + std::to_string(n) + "] " + c.name;
+  so.keep_batch_values = true;  // the verdicts estimate the cells' correlation from them
   TableFile f;
   f.tables = simulate(ex, so);
   if (!o.ranks->root()) return f;  // the tables are complete on rank 0 only
@@ -286,7 +287,9 @@ CheckResult run_check(const Check& chk, const Table& t, const Experiment& ex, co
   }
   exclude_duplicate_channels(t, r.model_values);
   const std::vector<double> model_se = evaluate_model_stderr(chk.model, t, ex, r.model_values);
-  r.comparison = compare(t.values(), t.stderrs(), r.model_values, t.batches, model_se, t.channels());
+  static const std::vector<double> none;  // (a table read from a file without batch values)
+  r.comparison = compare(t.values(), t.stderrs(), r.model_values, t.batches, model_se, t.channels(),
+                         t.has_batch_values() ? t.batch_values : none);
   r.verdict = judge(r.comparison, info->exact, suite.significance, chk.tolerance);
   return r;
 }

@@ -26,14 +26,14 @@ std::vector<Table> simulate(const Experiment& ex, const SimulateOptions& options
   const Communicator& ranks = *options.ranks;
   check_table_names(ex, options.tables, "SimulateOptions", "tables");
   // Before anything is allocated; rank 0 (which holds the tables) decides for every rank.
-  check_on_root(ranks, [&] { check_memory(ex, threads); });
+  check_on_root(ranks, [&] { check_memory(ex, threads, options.keep_batch_values); });
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   double work = 0;
   for (const Measure& m : ex.measures) work += work_units(m);
   work *= ex.run.batches;
   Progress progress(options.label, work, options.quiet || !ranks.root());
   progress.stop_when(options.cancel);
-  const BatchLoop loop(ranks, progress, work / ex.run.batches);
+  const BatchLoop loop(ranks, progress, work / ex.run.batches, options.keep_batch_values);
   std::size_t grains = 0;
   std::vector<Table> out = ex.kind == "micrograin" ? simulate_micrograin(ex, loop, &grains)
                            : ex.kind == "slab"     ? simulate_slab(ex, loop, options.tables)

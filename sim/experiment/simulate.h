@@ -25,6 +25,9 @@ struct SimulateOptions {
   // Set from another thread to stop the run: simulate() throws Cancelled
   // (sim/parallel/progress.h) when a measure of a batch is done.
   const std::atomic<bool>* cancel = nullptr;
+  // The tables keep every batch's estimates (Table::batch_values), for
+  // verdicts that estimate the cells' correlation; 8 bytes per cell and batch.
+  bool keep_batch_values = false;
 };
 
 struct SimulateSummary {

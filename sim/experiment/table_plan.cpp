@@ -72,9 +72,9 @@ std::string size_keys(const Measure& m, std::size_t index) {
   return text;
 }
 
-double measure_bytes(const Measure& m, const Experiment& ex, int threads) {
+double measure_bytes(const Measure& m, const Experiment& ex, int threads, bool keep_batch_values) {
   const MeasureSize s = measure_size(m, ex);
-  return 48 * s.cells + 8 * s.tally * (threads + 2);
+  return 48 * s.cells + 8 * s.tally * (threads + 2) + (keep_batch_values ? 8.0 * ex.run.batches * s.cells : 0.0);
 }
 
 // A byte count with an optional K, M, G or T suffix; -1 if malformed.
@@ -138,9 +138,9 @@ int effective_threads(const Experiment& ex, int requested) {
   return requested > 0 ? requested : ex.run.threads > 0 ? ex.run.threads : tbb::info::default_concurrency();
 }
 
-double memory_needed(const Experiment& ex, int threads) {
+double memory_needed(const Experiment& ex, int threads, bool keep_batch_values) {
   double bytes = 0;
-  for (const Measure& m : ex.measures) bytes += measure_bytes(m, ex, threads);
+  for (const Measure& m : ex.measures) bytes += measure_bytes(m, ex, threads, keep_batch_values);
   return bytes;
 }
 
@@ -165,14 +165,16 @@ double memory_budget(std::string* why) {
   return memory / 2;
 }
 
-void check_memory(const Experiment& ex, int requested_threads) {
+void check_memory(const Experiment& ex, int requested_threads, bool keep_batch_values) {
   const int threads = effective_threads(ex, requested_threads);
   std::string why;
-  const double budget = memory_budget(&why), need = memory_needed(ex, threads);
+  const double budget = memory_budget(&why), need = memory_needed(ex, threads, keep_batch_values);
   if (need <= budget) return;
   std::size_t largest = 0;
   for (std::size_t k = 1; k < ex.measures.size(); ++k)
-    if (measure_bytes(ex.measures[k], ex, threads) > measure_bytes(ex.measures[largest], ex, threads)) largest = k;
+    if (measure_bytes(ex.measures[k], ex, threads, keep_batch_values) >
+        measure_bytes(ex.measures[largest], ex, threads, keep_batch_values))
+      largest = k;
   char cells[32];
   std::snprintf(cells, sizeof cells, "%.3g", measure_cells(ex.measures[largest], ex));
   throw ConfigError(ex.file, size_keys(ex.measures[largest], largest),

@@ -45,8 +45,9 @@ int effective_threads(const Experiment& ex, int requested);
 // per table cell 48 bytes (sum, sum_sq, one batch's estimates and copies, as
 // the sphere walks hold them; the value and stderr written), plus one chunk
 // tally per thread (and two more) of the measure's largest per-direction
-// tally, 8 bytes a number.
-double memory_needed(const Experiment& ex, int threads);
+// tally, 8 bytes a number; with `keep_batch_values`, 8 bytes per cell and
+// batch more (sim/tally/table.h).
+double memory_needed(const Experiment& ex, int threads, bool keep_batch_values = false);
 
 // The memory a run may plan for, in bytes: MCREF_MEMORY_LIMIT (bytes, with an
 // optional suffix K, M, G or T, powers of 1024) if set, else half the physical
@@ -57,7 +58,7 @@ double memory_budget(std::string* why = nullptr);
 // ConfigError naming the file, the keys of the largest measure and the size
 // needed, if memory_needed(ex, effective_threads(ex, requested_threads))
 // exceeds memory_budget().
-void check_memory(const Experiment& ex, int requested_threads);
+void check_memory(const Experiment& ex, int requested_threads, bool keep_batch_values = false);
 
 // One number of bytes as text: "3.2 GB" (powers of 1024: KB, MB, GB, TB).
 std::string bytes_text(double bytes);

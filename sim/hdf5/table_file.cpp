@@ -85,12 +85,12 @@ void check_names(const std::string& path, const TableFile& f) {
   for (const Table& t : f.tables) {
     if (!usable(t.name)) throw ConfigError(path, "", "table name \"" + t.name + "\" must be non-empty, not . or .., and without '/'");
     if (!tables.insert(t.name).second) throw ConfigError(path, "", "two tables are named \"" + t.name + "\"");
-    std::set<std::string> taken{"value", "stderr", "sum", "sum_sq", "bnds"};
+    std::set<std::string> taken{"value", "stderr", "sum", "sum_sq", "bnds", "batch_values", "batch"};
     for (const Axis& a : t.axes)
       for (const std::string& n : {a.name, a.name + "_bounds", a.name + "_label"})
         if (!usable(a.name) || !taken.insert(n).second)
           throw ConfigError(path, "", "table \"" + t.name + "\": axis name \"" + a.name + "\" must be non-empty, without '/', "
-                                      "not value, stderr, sum, sum_sq or bnds, and unlike the others and their _bounds and _label");
+                                      "not value, stderr, sum, sum_sq, bnds, batch_values or batch, and unlike the others and their _bounds and _label");
   }
 }
 

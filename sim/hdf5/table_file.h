@@ -9,6 +9,9 @@
 //   /<table>/value         mean over batches            (N-d, float64)
 //   /<table>/stderr        standard error of the mean   (N-d)
 //   /<table>/sum, sum_sq   raw sums over batches        (N-d)
+//   /<table>/batch_values  each batch's estimates, (batches, N-d), with the
+//                          dimension scale /<table>/batch (0, 1, ...); only
+//                          in tables that kept them (mcref validate's)
 //     (each with long_name; value, stderr and sum with units; coordinates
 //     naming the label datasets below, if any)
 //   /<table>/<axis>        axis points or bin centres: HDF5 dimension scales

@@ -3,6 +3,7 @@
 #include <hdf5_hl.h>
 
 #include <cmath>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -69,6 +70,21 @@ void write_table_group(hid_t parent, const Table& t, int compression, TableStora
     data.push_back(h5::write_doubles(group, "sum_sq", dims, t.sum_sq, compression));
     kinds = sums ? std::vector<int>{2, 3} : std::vector<int>{0, 1, 2, 3};
   }
+  // Each batch's estimates, batch first (full storage, when the table kept them).
+  std::optional<h5::Handle> per_batch, batch_scale;
+  if (!lean && !sums && t.has_batch_values() && t.batches > 0) {
+    std::vector<hsize_t> bdims{static_cast<hsize_t>(t.batches)};
+    bdims.insert(bdims.end(), dims.begin(), dims.end());
+    per_batch.emplace(h5::write_doubles(group, "batch_values", bdims, t.batch_values, compression));
+    h5::write_string_attr(*per_batch, "long_name", "each batch's estimate of " + t.quantity);
+    h5::write_string_attr(*per_batch, "units", t.units);
+    std::vector<double> index(static_cast<std::size_t>(t.batches));
+    for (std::size_t b = 0; b < index.size(); ++b) index[b] = static_cast<double>(b);
+    batch_scale.emplace(h5::write_doubles(group, "batch", {index.size()}, index));
+    h5::write_string_attr(*batch_scale, "units", "1");
+    h5::check(H5DSset_scale(*batch_scale, "batch"), "making a dimension scale");
+    h5::check(H5DSattach_scale(*per_batch, *batch_scale, 0), "attaching a scale");
+  }
   // CF names: units and long_name on the data, auxiliary label coordinates.
   std::string labelled;
   for (const Axis& a : t.axes)
@@ -94,6 +110,7 @@ void write_table_group(hid_t parent, const Table& t, int compression, TableStora
     h5::check(H5DSset_scale(scale, a.name.c_str()), "making a dimension scale");
     for (const h5::Handle& ds : data)
       h5::check(H5DSattach_scale(ds, scale, static_cast<unsigned>(d)), "attaching a scale");
+    if (per_batch) h5::check(H5DSattach_scale(*per_batch, scale, static_cast<unsigned>(d + 1)), "attaching a scale");
     if (a.kind == Axis::Kind::Bins) {
       std::vector<double> b;
       for (std::size_t i = 0; i < a.size(); ++i) b.insert(b.end(), {a.lower(i), a.upper(i)});
@@ -159,6 +176,19 @@ Table read_table_group(hid_t parent, const std::string& name) {
       if (!(stored[i] == expect || empty_cell))
         throw std::runtime_error("table " + name + ": " + derived + " does not match its sums (damaged?)");
     }
+  }
+  // Batch values: their sums in batch order are the stored sums, bit for bit.
+  if (storage == "full" && h5::exists(group, "batch_values")) {
+    t.batch_values = h5::read_doubles(group, "batch_values");
+    t.keep_batch_values = true;
+    if (t.batches < 1 || t.batch_values.size() != static_cast<std::size_t>(t.batches) * t.cells())
+      throw std::runtime_error("table " + name + ": batch_values has the wrong shape");
+    std::vector<double> sum(t.cells(), 0.0);
+    for (std::size_t b = 0; b < static_cast<std::size_t>(t.batches); ++b)
+      for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += t.batch_values[b * sum.size() + i];
+    for (std::size_t i = 0; i < sum.size(); ++i)
+      if (!(sum[i] == t.sum[i] || (std::isnan(sum[i]) && std::isnan(t.sum[i]))))
+        throw std::runtime_error("table " + name + ": batch_values do not add up to sum (damaged?)");
   }
   H5O_info_t info;
   h5::check(H5Oget_info(group, &info), "reading a group's attributes");

@@ -7,6 +7,10 @@
 // Files from before the CF names (<axis>_edges, attribute unit) still read.
 // Written without time tracking (see h5_util.h), optionally gzip-compressed.
 //
+// A table that kept its batch values (Table::batch_values) has them as
+// batch_values (batches x N-d, float64), with the dimension scale batch
+// (0, 1, ...); reading checks that they add up to sum, bit for bit.
+//
 // Two other storages, each marked by the group's attribute storage:
 // - "lean" (paper-scale datasets that will not be merged further): value and
 //   stderr as float32, no sum nor sum_sq. Such a table cannot be read back as a

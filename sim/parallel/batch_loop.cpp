@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 
 namespace mcref {
@@ -96,12 +97,24 @@ void merge_into(BatchLoop::Tables& tables, const BatchLoop::Tables& one) {
 }  // namespace
 
 void BatchLoop::run(int count, Tables& tables, const Batch& batch) const {
-  if (ranks_.size() == 1) {
+  if (ranks_.size() == 1 && !keep_batch_values_) {
     for (int b = 0; b < count; ++b) batch(b, tables);
     return;
   }
-  const DistributedStep step;
+  std::optional<DistributedStep> step;
+  if (ranks_.size() > 1) step.emplace();
   const Tables empty = tables;
+  if (keep_batch_values_ && ranks_.root())
+    for (auto& group : tables)
+      for (Table& t : group) t.keep_batch_values = t.batches == 0;
+  if (ranks_.size() == 1) {
+    for (int b = 0; b < count; ++b) {
+      Tables one = empty;
+      batch(b, one);
+      merge_into(tables, one);
+    }
+    return;
+  }
   const int n = ranks_.size();
   for (int b = 0; b < count; ++b) {
     const int owner = b % n;

@@ -83,6 +83,7 @@ void Table::add_batch(const std::vector<double>& estimate) {
     sum[i] += estimate[i];
     sum_sq[i] += estimate[i] * estimate[i];
   }
+  if (keep_batch_values) batch_values.insert(batch_values.end(), estimate.begin(), estimate.end());
   ++batches;
 }
 
@@ -94,6 +95,17 @@ void Table::merge(const Table& other) {
   for (std::size_t i = 0; i < sum.size(); ++i) {
     sum[i] += other.sum[i];
     sum_sq[i] += other.sum_sq[i];
+  }
+  if (keep_batch_values) {
+    if (other.has_batch_values())
+      batch_values.insert(batch_values.end(), other.batch_values.begin(), other.batch_values.end());
+    else if (other.batches == 1)  // its sums are its one batch's estimates (0 + x = x)
+      batch_values.insert(batch_values.end(), other.sum.begin(), other.sum.end());
+    else if (other.batches > 0) {
+      keep_batch_values = false;
+      batch_values.clear();
+      batch_values.shrink_to_fit();
+    }
   }
   batches += other.batches;
   for (const auto& [key, text] : other.attributes) {

@@ -53,6 +53,13 @@ struct Table {
   std::vector<Axis> axes;  // row-major: the last axis varies fastest
   std::vector<double> sum, sum_sq;
   std::int64_t batches = 0;
+  // Each batch's estimates, batch after batch (batches x cells, row-major),
+  // when kept (SimulateOptions::keep_batch_values; table files store them as
+  // batch_values): the verdicts estimate the cells' correlation from them
+  // (validate/metrics.h). Kept tables append a merged one-batch table's sums,
+  // or a merged table's own batch values; merging one without drops them all.
+  bool keep_batch_values = false;
+  std::vector<double> batch_values;
   std::map<std::string, std::string> attributes;  // extra notes stored with the table
 
   Table() = default;
@@ -69,8 +76,10 @@ struct Table {
   void add_batch(const std::vector<double>& estimate);
   // Adds another table's batches (same name, axes); exact merge. Count
   // attributes (kCountAttributes) add up; other attributes missing here are
-  // taken from `other`.
+  // taken from `other`. Batch values: see keep_batch_values.
   void merge(const Table& other);
+  // Batch values for every batch (so the verdicts can use them).
+  bool has_batch_values() const { return keep_batch_values && batch_values.size() == static_cast<std::size_t>(batches) * cells(); }
   double value(std::size_t i) const;
   double stderr_of(std::size_t i) const;
   std::vector<double> values() const;

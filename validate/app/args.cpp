@@ -42,6 +42,7 @@ Args parse_args(const std::vector<std::string>& args, const std::string& verb, b
     else if (verb == "validate" && s == "--force") a.force = true;
     else if (verb == "validate" && s == "--case") a.cases.push_back(value(i));
     else if (verb == "simulate" && s == "--table") a.tables.push_back(value(i));
+    else if (verb == "simulate" && s == "--batch-values") a.batch_values = true;
     else if (!s.empty() && s[0] == '-') throw ConfigError("command line", s, "unknown option for 'mcref " + verb + "' (see --help)");
     else a.positional.push_back(s);
   }

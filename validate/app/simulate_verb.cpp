@@ -13,15 +13,18 @@ namespace mcref::cli {
 namespace {
 const char* kHelp =
     "usage: mcref simulate EXPERIMENT.toml -o TABLES.h5 [--seed N] [--threads N]\n"
-    "                      [--set key=value]... [--table NAME]... [--quiet]\n"
+    "                      [--set key=value]... [--table NAME]... [--batch-values] [--quiet]\n"
     "\n"
     "Simulates every [[measure]] of the experiment on run.batches independent\n"
     "realizations of the geometry and writes one table per measure to TABLES.h5\n"
     "(written to a temporary file and renamed: never half-written).\n"
     "  --seed N         overrides run.seed\n"
     "  --threads N      worker threads (tables are identical for any N)\n"
-    "  --set key=value  overrides a key, e.g. --set geometry.tau0=0.3 --set measure.0.samples=1e5\n"    "  --table NAME     writes only this table (repeatable; default: every table); the\n"
+    "  --set key=value  overrides a key, e.g. --set geometry.tau0=0.3 --set measure.0.samples=1e5\n"
+    "  --table NAME     writes only this table (repeatable; default: every table); the\n"
     "                   slab's brdf tables not named are not computed, the others are the same\n"
+    "  --batch-values   also writes each batch's estimates (batch_values: 8 bytes per cell\n"
+    "                   and batch), from which verdicts estimate the cells' correlation\n"
     "  --quiet          no progress line\n"
     "Under mpirun -np N, the batches are spread over the N ranks and rank 0 writes\n"
     "TABLES.h5: the same tables as one process.\n";
@@ -46,6 +49,7 @@ int simulate(const std::vector<std::string>& raw, const std::string& command_lin
   opt.threads = a.threads;
   opt.quiet = a.quiet;
   opt.tables = a.tables;
+  opt.keep_batch_values = a.batch_values;
   SimulateSummary summary;
   TableFile out;
   out.tables = mcref::simulate(ex, opt, &summary);

@@ -29,6 +29,7 @@ struct Args {
   bool force = false;
   std::vector<std::string> cases;  // validate --case PATTERN (shell wildcards), any of them
   std::vector<std::string> tables;  // simulate --table NAME: only these tables
+  bool batch_values = false;        // simulate --batch-values: the tables keep each batch's estimates
 };
 // An integer command-line value in [lo, hi] (ConfigError naming the flag otherwise).
 long long parse_integer(const std::string& flag, const std::string& value, long long lo, long long hi);

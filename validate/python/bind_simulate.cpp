@@ -122,12 +122,14 @@ std::vector<Table> simulate_interruptible(const Experiment& ex, SimulateOptions 
   return tables;
 }
 
-TableFile run(const Experiment& ex, int threads, bool quiet, const std::vector<std::string>& tables, const std::string& call) {
+TableFile run(const Experiment& ex, int threads, bool quiet, const std::vector<std::string>& tables, bool keep_batch_values,
+              const std::string& call) {
   check_table_names(ex, tables, "<python>", "tables");
   SimulateOptions opt;
   opt.threads = threads;
   opt.quiet = quiet;
   opt.tables = tables;
+  opt.keep_batch_values = keep_batch_values;
   TableFile out;
   out.tables = simulate_interruptible(ex, opt);
   out.provenance = make_provenance(ex.text, ex.file, ex.run.seed, call);
@@ -145,32 +147,33 @@ std::vector<std::string> overrides(std::vector<std::string> sets, py::object see
 
 void bind_simulate(py::module_& m) {
   m.def("simulate", [](py::object config, py::object seed, int threads, std::vector<std::string> sets, bool quiet,
-                       std::vector<std::string> tables) {
+                       std::vector<std::string> tables, bool keep_batch_values) {
     const auto [text, file] = config_text(config);
     const Experiment ex = parse_experiment(text, file, overrides(sets, seed));
     if (threads < 0 || threads > 1024) throw ConfigError("<python>", "threads", "= " + std::to_string(threads) + " must be an integer in [0, 1024]");
-    return run(ex, threads, quiet, tables, "python: mcref.simulate");
+    return run(ex, threads, quiet, tables, keep_batch_values, "python: mcref.simulate");
   }, py::arg("config"), py::arg("seed") = py::none(), py::arg("threads") = 0,
         py::arg("sets") = std::vector<std::string>{}, py::arg("quiet") = true,
-        py::arg("tables") = std::vector<std::string>{},
+        py::arg("tables") = std::vector<std::string>{}, py::arg("keep_batch_values") = false,
         "Simulates an experiment given as a dict or as TOML text, with the keys of the\n"
         "experiment files (README: Experiment files). seed overrides run.seed (as --seed);\n"
         "threads: worker threads, 0 = run.threads (tables are identical for any count);\n"
         "sets: 'key=value' overrides (as --set); tables: only these tables, by name (as\n"
-        "--table; default all). Returns a TableFile whose tables are\n"
+        "--table; default all); keep_batch_values: the tables keep each batch's estimates\n"
+        "(Table.batch_values, 8 bytes per cell and batch), which judge() uses. Returns a TableFile whose tables are\n"
         "bit-identical to what `mcref simulate` writes for the same config and seed.\n"
         "Bad input raises mcref.ConfigError with the CLI's one-line message (the file is\n"
         "named '<dict>' or '<string>').");
 
   m.def("simulate_file", [](const std::filesystem::path& p, py::object seed, int threads, std::vector<std::string> sets,
-                            bool quiet, std::vector<std::string> tables) {
+                            bool quiet, std::vector<std::string> tables, bool keep_batch_values) {
     const std::string path = p.string();
     const Experiment ex = load_experiment(path, overrides(sets, seed));
     if (threads < 0 || threads > 1024) throw ConfigError("<python>", "threads", "= " + std::to_string(threads) + " must be an integer in [0, 1024]");
-    return run(ex, threads, quiet, tables, "python: mcref.simulate_file " + path);
+    return run(ex, threads, quiet, tables, keep_batch_values, "python: mcref.simulate_file " + path);
   }, py::arg("path"), py::arg("seed") = py::none(), py::arg("threads") = 0,
         py::arg("sets") = std::vector<std::string>{}, py::arg("quiet") = true,
-        py::arg("tables") = std::vector<std::string>{},
+        py::arg("tables") = std::vector<std::string>{}, py::arg("keep_batch_values") = false,
         "Same as simulate() for an experiment file: errors name the file exactly as `mcref simulate` does.");
 
   m.def("parse_config", [](py::object config) {

@@ -1,12 +1,15 @@
-// Tables in Python: mcref.Table / Axis / TableFile, read_tables, write_tables.
+// Tables in Python: mcref.Table / Axis / TableFile, read_tables, write_tables,
+// and judge (a table against a model's values, as `mcref validate` judges).
 // Arrays are copies (numpy, float64, row-major in the table's axis order);
 // files go through the C++ writer (temporary file renamed into place).
+#include <cmath>
 #include <stdexcept>
 
 #include "sim/experiment/config_error.h"
 #include "sim/files/output_path.h"
 #include "sim/hdf5/table_file.h"
 #include "sim/hdf5/table_group.h"
+#include "validate/metrics.h"
 #include "validate/python/bindings.h"
 
 namespace mcref::python {
@@ -122,6 +125,16 @@ void bind_tables(py::module_& m) {
       .def_property_readonly("stderr", [](const Table& t) { return shaped(t, t.stderrs()); })
       .def_property_readonly("sum", [](const Table& t) { return shaped(t, t.sum); })
       .def_property_readonly("sum_sq", [](const Table& t) { return shaped(t, t.sum_sq); })
+      .def_property_readonly("batch_values", [](const Table& t) -> py::object {
+        if (!t.has_batch_values()) return py::none();
+        std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(t.batches)};
+        for (std::size_t s : t.shape()) shape.push_back(static_cast<py::ssize_t>(s));
+        py::array_t<double> a(shape);
+        std::copy(t.batch_values.begin(), t.batch_values.end(), a.mutable_data());
+        a.attr("setflags")(py::arg("write") = false);
+        return a;
+      }, "Each batch's estimates, shape (batches,) + shape, or None if the table did not keep them\n"
+         "(simulate(..., keep_batch_values=True), and mcref validate's tables, keep them).")
       .def("to_xarray", [](const Table& t) {
         py::module_ xr = py::module_::import("xarray");  // optional: ImportError without it
         py::list dims;
@@ -214,6 +227,41 @@ void bind_tables(py::module_& m) {
   }, py::arg("path"), py::arg("tables"), py::arg("config") = "", py::arg("seed") = py::int_(0),
         py::arg("command_line") = "python: mcref.write_tables",
         "Writes a list of Tables with new provenance (config text, seed, this mcref build, now).");
+
+  m.def("judge", [](const Table& t, const Array& model, bool exact, double significance, double tolerance,
+                    py::object model_stderr, bool use_batch_values) {
+    check_argument("significance", significance, {0, 1, true, true});
+    check_argument("tolerance", tolerance, {0, INFINITY, false, true});
+    const std::vector<double> m = flat(t, model, "model");
+    const std::vector<double> mse = model_stderr.is_none() ? std::vector<double>{} : flat(t, Array(model_stderr), "model_stderr");
+    static const std::vector<double> none;
+    const Comparison c = compare(t.values(), t.stderrs(), m, t.batches, mse, t.channels(),
+                                 use_batch_values && t.has_batch_values() ? t.batch_values : none);
+    const Verdict v = judge(c, exact, significance, tolerance);
+    py::dict d;
+    d["status"] = v.status;
+    d["reason"] = v.reason;
+    d["cells"] = c.cells;
+    d["chi2_per_dof"] = c.chi2_per_dof();
+    d["p_value"] = c.p_value;
+    d["effective_dof"] = c.effective_dof;
+    d["joint_test"] = c.joint_test;
+    d["max_abs_z"] = c.max_abs_z;
+    d["max_rel_error"] = c.max_rel_error;
+    d["rms_rel_error"] = c.rms_rel_error;
+    d["z"] = shaped(t, c.z);
+    return d;
+  }, py::arg("table"), py::arg("model"), py::arg("exact") = true, py::arg("significance") = 1e-3,
+        py::arg("tolerance") = 0.0, py::arg("model_stderr") = py::none(), py::arg("use_batch_values") = true,
+        "Judges a table against a model's values on its cells, as `mcref validate` does (README:\n"
+        "Verdicts): returns a dict with status ('pass', 'FAIL', 'measured' or 'n/a'), reason,\n"
+        "cells, chi2_per_dof, p_value, joint_test, effective_dof, max_abs_z,\n"
+        "max_rel_error, rms_rel_error and z (per cell). exact: judged by the chi2 and |z|\n"
+        "tests at `significance`; otherwise measured, or judged on the largest relative error\n"
+        "when tolerance > 0. model_stderr: the model's own standard error per cell, if it is a\n"
+        "Monte Carlo estimate. With the table's batch values (and use_batch_values), p comes\n"
+        "from a sign-flip test over the batches or a chi2 with their correlation (joint_test\n"
+        "'sign-flip' or 'Box'); without, from a chi2 with the cells taken as independent.");
 }
 
 }  // namespace mcref::python

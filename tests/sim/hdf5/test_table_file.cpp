@@ -319,6 +319,44 @@ TEST_F(TableFileTest, WriteOntoADirectoryThrowsAndCleansUp) {
 // Merging shards: batch estimates that are multiples of 2^-10 below 2^10
 // add exactly in any order, so the merged sums are bit-identical to one table
 // with all batches; with arbitrary doubles they agree to rounding.
+// Batch values (kept by mcref validate's tables) round-trip with their "batch"
+// dimension scale; values that do not add up to the stored sums are refused
+// as damaged, and a table without them reads as before.
+TEST_F(TableFileTest, BatchValuesRoundTripAndAreCheckedAgainstTheSums) {
+  Table t("kept", "test_quantity", {Axis::uniform_bins("theta", "rad", 0, 1, 3), Axis::points("channel", "1", {0, 1})});
+  t.keep_batch_values = true;
+  Rng rng(31);
+  for (int b = 0; b < 4; ++b) {
+    std::vector<double> est(t.cells());
+    for (double& x : est) x = rng.uniform();
+    t.add_batch(est);
+  }
+  ASSERT_TRUE(t.has_batch_values());
+  TableFile f;
+  f.tables = {t, random_table("plain", {Axis::points("x", "1", {1, 2})}, 3, 5)};
+  write_table_file(path("b.h5"), f);
+  const TableFile back = read_table_file(path("b.h5"));
+  ASSERT_TRUE(back.find("kept")->has_batch_values());
+  EXPECT_EQ(back.find("kept")->batch_values, t.batch_values);
+  EXPECT_FALSE(back.find("plain")->has_batch_values());
+  {
+    h5::Handle file(H5Fopen(path("b.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+    h5::Handle ds(H5Dopen2(file, "kept/batch_values", H5P_DEFAULT), H5Dclose);
+    h5::Handle space(H5Dget_space(ds), H5Sclose);
+    hsize_t dims[3];
+    ASSERT_EQ(H5Sget_simple_extent_dims(space, dims, nullptr), 3);
+    EXPECT_EQ(dims[0], 4u);
+    EXPECT_EQ(dims[1], 3u);
+    EXPECT_EQ(dims[2], 2u);
+    EXPECT_EQ(read_doubles(static_cast<hid_t>(file), "kept/batch"), (std::vector<double>{0, 1, 2, 3}));
+  }
+  Table damaged = t;
+  damaged.batch_values[5] += 1e-9;
+  f.tables = {damaged};
+  write_table_file(path("d.h5"), f);
+  EXPECT_NE(expect_config_error([&] { read_table_file(path("d.h5")); }, path("d.h5")).find("do not add up"), std::string::npos);
+}
+
 TEST(TableMerge, MergedShardsEqualOneTableWithAllBatches) {
   const std::vector<Axis> axes{Axis::points("theta_i", "rad", {0, 1}), Axis::uniform_bins("r", "1", 0, 1, 4)};
   for (bool dyadic : {true, false}) {
