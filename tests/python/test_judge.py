@@ -66,3 +66,11 @@ def test_judge_bad_arguments(kept):
         mcref.judge(kept, model[:2])
     with pytest.raises(mcref.ConfigError, match="model_stderr.*shape"):
         mcref.judge(kept, model, model_stderr=np.ones(3))
+
+
+def test_batch_values_in_xarray(kept):
+    xr = pytest.importorskip("xarray")
+    ds = kept.to_xarray()
+    assert ds["batch_values"].dims == ("batch",) + tuple(kept.axis_names)
+    assert np.array_equal(ds["batch_values"].values, kept.batch_values)
+    assert list(ds["batch"].values) == list(range(16))

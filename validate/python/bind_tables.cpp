@@ -29,6 +29,16 @@ py::array_t<double> shaped(const Table& t, const std::vector<double>& v) {
   return a;
 }
 
+// The kept batch values, shaped (batches,) + the table's shape, read-only as `shaped`.
+py::array_t<double> batch_array(const Table& t) {
+  std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(t.batches)};
+  for (std::size_t s : t.shape()) shape.push_back(static_cast<py::ssize_t>(s));
+  py::array_t<double> a(shape);
+  std::copy(t.batch_values.begin(), t.batch_values.end(), a.mutable_data());
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
 std::vector<double> flat(const Table& t, const Array& a, const char* what) {
   const std::vector<std::size_t> shape = t.shape();
   bool ok = static_cast<std::size_t>(a.ndim()) == shape.size();
@@ -127,12 +137,7 @@ void bind_tables(py::module_& m) {
       .def_property_readonly("sum_sq", [](const Table& t) { return shaped(t, t.sum_sq); })
       .def_property_readonly("batch_values", [](const Table& t) -> py::object {
         if (!t.has_batch_values()) return py::none();
-        std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(t.batches)};
-        for (std::size_t s : t.shape()) shape.push_back(static_cast<py::ssize_t>(s));
-        py::array_t<double> a(shape);
-        std::copy(t.batch_values.begin(), t.batch_values.end(), a.mutable_data());
-        a.attr("setflags")(py::arg("write") = false);
-        return a;
+        return batch_array(t);
       }, "Each batch's estimates, shape (batches,) + shape, or None if the table did not keep them\n"
          "(simulate(..., keep_batch_values=True), and mcref validate's tables, keep them).")
       .def("to_xarray", [](const Table& t) {
@@ -164,6 +169,15 @@ void bind_tables(py::module_& m) {
         data["stderr"] = py::make_tuple(d, shaped(t, t.stderrs()), units);
         data["sum"] = py::make_tuple(d, shaped(t, t.sum), units);
         data["sum_sq"] = py::make_tuple(d, shaped(t, t.sum_sq));
+        if (t.has_batch_values() && t.batches > 0) {  // as the file's batch_values, over the batch dimension
+          py::list batch_dims;
+          batch_dims.append("batch");
+          for (const auto& n : dims) batch_dims.append(n);
+          std::vector<double> index(static_cast<std::size_t>(t.batches));
+          for (std::size_t b = 0; b < index.size(); ++b) index[b] = static_cast<double>(b);
+          coords["batch"] = py::make_tuple("batch", py::array_t<double>(index.size(), index.data()), py::dict(py::arg("units") = "1"));
+          data["batch_values"] = py::make_tuple(py::tuple(batch_dims), batch_array(t), units);
+        }
         attrs["name"] = t.name;
         attrs["quantity"] = t.quantity;
         attrs["units"] = t.units;
@@ -171,7 +185,8 @@ void bind_tables(py::module_& m) {
         attrs["batches"] = t.batches;
         for (const auto& [k, v] : t.attributes) attrs[py::str(k)] = v;
         return xr.attr("Dataset")(data, py::arg("coords") = coords, py::arg("attrs") = attrs);
-      }, "The table as an xarray.Dataset (value, stderr, sum, sum_sq over the axes; needs xarray).")
+      }, "The table as an xarray.Dataset (value, stderr, sum, sum_sq over the axes, and batch_values over\n"
+         "batch and the axes if kept; needs xarray).")
       .def("__repr__", [](const Table& t) {
         std::string s = "<mcref.Table " + t.name + " (" + t.quantity + ", " + t.units + "), axes";
         for (const Axis& a : t.axes) s += " " + a.name + "[" + std::to_string(a.size()) + "]";
