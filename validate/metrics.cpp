@@ -78,7 +78,7 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
     for (double w : share) model_noise = model_noise || w < 1;
   if (have_batches)
     c.joint_test = !model_noise && batches >= kMinFlipBatches && batches <= kMaxFlipBatches ? "sign-flip" : "Box";
-  double p_min = 1;
+  double p_min = 1, box_min = 1;
   for (std::size_t k = 0; k < channels; ++k)
     if (channel_cells[k] > 0) {
       ++c.channels;
@@ -88,27 +88,40 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
           have_batches ? correlation_square_trace(batch_values, sim.size(), batches, compared[k], sim_share[k]) : cells;
       const double scale = trace / cells, dof = cells * cells / trace;
       c.effective_dof += dof;
+      const double box = chi2_survival(channel_chi2[k] / scale, dof);
+      box_min = std::fmin(box_min, box);
       p_min = std::fmin(p_min, c.joint_test == "sign-flip"
                                    ? sign_flip_p_value(batch_values, sim.size(), batches, compared[k], model)
-                                   : chi2_survival(channel_chi2[k] / scale, dof));
+                                   : box);
     }
-  if (c.joint_test == "sign-flip") c.smallest_p = std::fmin(1.0, sign_flip_smallest_p(batches) * static_cast<double>(c.channels));
-  c.p_value = std::fmin(1.0, p_min * static_cast<double>(c.channels > 0 ? c.channels : 1));
+  const double bonferroni = static_cast<double>(c.channels > 0 ? c.channels : 1);
+  if (c.joint_test == "sign-flip") c.smallest_p = std::fmin(1.0, sign_flip_smallest_p(batches) * bonferroni);
+  c.p_value = std::fmin(1.0, p_min * bonferroni);
+  c.box_p_value = std::fmin(1.0, box_min * bonferroni);
   c.rms_rel_error = c.signal_cells ? std::sqrt(rel2 / c.signal_cells) : 0;
   return c;
 }
 
 namespace {
 
+// Whether the sign-flip test has too few patterns for the level alpha: then
+// judge() uses Box's approximation instead.
+bool flips_too_few(const Comparison& c, double alpha) { return c.joint_test == "sign-flip" && c.smallest_p > alpha; }
+
 // How the joint test was made, for the verdict's reason.
-std::string joint_text(const Comparison& c) {
-  char buf[160];
-  if (c.joint_test == "sign-flip")
+std::string joint_text(const Comparison& c, double alpha) {
+  char buf[200];
+  if (flips_too_few(c, alpha))
+    std::snprintf(buf, sizeof buf,
+                  "chi2 with %.3g effective dof from the batches' correlation (Box): the sign-flip test cannot give p "
+                  "below %.2g with these batches",
+                  c.effective_dof, c.smallest_p);
+  else if (c.joint_test == "sign-flip")
     std::snprintf(buf, sizeof buf, "sign-flip test over the batches; %.3g independent cells' worth", c.effective_dof);
   else if (c.joint_test == "Box")
     std::snprintf(buf, sizeof buf, "chi2 with %.3g effective dof from the batches' correlation (Box)", c.effective_dof);
   else
-    std::snprintf(buf, sizeof buf, "chi2 with the cells taken as independent: no batch values");
+    std::snprintf(buf, sizeof buf, "chi2 with the cells taken as independent: no batch values, or under 3 batches");
   return buf;
 }
 
@@ -147,18 +160,14 @@ Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance) {
     note = "; " + std::to_string(c.mismatched_exact_cells) + " zero-variance cells differ slightly or are empty (not judged)";
   if (c.empty_cells > 0) note += "; " + std::to_string(c.empty_cells) + " empty cells (NaN: a batch had no sample) not compared";
   if (c.model_undefined > 0) note += "; model undefined on " + std::to_string(c.model_undefined) + " cells";
-  if (exact && c.smallest_p > alpha) {
-    std::snprintf(buf, sizeof buf, "; the sign-flip test cannot give p below %.2g (too few batches for this significance)",
-                  c.smallest_p);
-    note += buf;
-  }
   if (exact) {
     const double bound = sidak_z_bound(alpha, static_cast<double>(c.cells));
-    if (c.p_value < alpha) {
+    const double p = flips_too_few(c, alpha) ? c.box_p_value : c.p_value;
+    if (p < alpha) {
       // Say how the chi2's dof were set, and whether the |z| bound (valid whatever the
       // correlation) agrees.
       std::snprintf(buf, sizeof buf, "chi2/dof = %.3g over %zu cells (%s), p = %.2g < %.2g%s; max |z| = %.2f %s %.2f",
-                    c.chi2_per_dof(), c.cells, joint_text(c).c_str(), c.p_value, alpha,
+                    c.chi2_per_dof(), c.cells, joint_text(c, alpha).c_str(), p, alpha,
                     c.channels > 1 ? " (worst channel's p, Bonferroni over channels)" : "", c.max_abs_z,
                     c.max_abs_z > bound ? ">" : "<=", bound);
       return {"FAIL", buf + note};
@@ -168,7 +177,7 @@ Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance) {
                     alpha, c.cells);
       return {"FAIL", buf + note};
     }
-    std::snprintf(buf, sizeof buf, "p = %.2g >= %.2g (%s); max |z| = %.2f <= %.2f", c.p_value, alpha, joint_text(c).c_str(),
+    std::snprintf(buf, sizeof buf, "p = %.2g >= %.2g (%s); max |z| = %.2f <= %.2f", p, alpha, joint_text(c, alpha).c_str(),
                   c.max_abs_z, bound);
     return {"pass", buf + note};
   }

@@ -33,6 +33,9 @@ struct Comparison {
   // (the chi2 with the cells taken as independent: no batch values).
   std::string joint_test = "independent";
   double smallest_p = 0;  // the smallest p_value the test can give (sign-flip), else 0
+  // Box's p where the sign-flip test gave p_value: judge() uses it at a
+  // significance below smallest_p (fewer patterns than the level needs).
+  double box_p_value = 1;
   // Independent cells' worth, summed over channels: each channel's cells^2 /
   // tr(R^2), R the cells' correlation estimated from the batch values, else
   // its cell count.

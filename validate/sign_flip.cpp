@@ -31,10 +31,14 @@ double sign_flip_p_value(const std::vector<double>& values, std::size_t per_batc
     for (std::size_t b = 0; b < B; ++b)
       for (std::size_t c = 0; c < B; ++c) G[b * B + c] += x[b] * x[c];
   }
-  double observed = 0;
-  for (double g : G) observed += g;
-  // Ties (and the rounding of T along the walk below) count as at least as large.
-  const double at_least = observed * (1 - 1e-12);
+  double observed = 0, bound = 0;  // |T| <= sum |G| for every pattern
+  for (double g : G) {
+    observed += g;
+    bound += std::fabs(g);
+  }
+  // Ties count as at least as large, and so does anything within the rounding of T
+  // along the walk below (about 1e-16 sum |G| a step; 32767 steps at most).
+  const double at_least = observed - 1e-9 * bound;
   std::size_t count = 1, patterns = 1;  // the observed pattern
   if (batches <= kExactBatches) {
     // Every pattern with eps_0 = +1, in Gray-code order: flipping eps_j changes T by

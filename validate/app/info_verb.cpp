@@ -41,8 +41,9 @@ int info(const std::vector<std::string>& raw) {
     else if (judged == 0) std::snprintf(rel, sizeof rel, "n/a (no non-zero value)");
     else std::snprintf(rel, sizeof rel, "%.3g", worst);
     const std::string empties = empty ? "  empty cells=" + std::to_string(empty) : "";
-    std::printf("  %-28s %-18s %s  batches=%lld  max rel. stderr=%s%s  [%s]\n", t.name.c_str(), t.quantity.c_str(),
-                axes.str().c_str(), static_cast<long long>(t.batches), rel, empties.c_str(), t.units.c_str());
+    std::printf("  %-28s %-18s %s  batches=%lld%s  max rel. stderr=%s%s  [%s]\n", t.name.c_str(), t.quantity.c_str(),
+                axes.str().c_str(), static_cast<long long>(t.batches), t.has_batch_values() ? " (values kept)" : "", rel,
+                empties.c_str(), t.units.c_str());
   }
   std::printf("config:\n%s\n", p.config.c_str());
   return 0;

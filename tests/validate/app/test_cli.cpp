@@ -26,6 +26,25 @@ TEST_F(Cli, GoodRunWritesATableFileThatInfoReads) {
   EXPECT_NE(info.out.find("tau_plus"), std::string::npos) << info.out;
 }
 
+// --batch-values: the file holds each batch's estimates (info says so), and
+// its sums are those of a run without them.
+TEST_F(Cli, BatchValuesAreWrittenOnRequest) {
+  const std::string exp = write("good.toml", experiment());
+  const std::string plain = path("plain.h5"), kept = path("kept.h5");
+  ASSERT_EQ(mcref("simulate " + quote(exp) + " -o " + quote(plain) + " --quiet").exit_code, 0);
+  const Result r = mcref("simulate " + quote(exp) + " -o " + quote(kept) + " --batch-values --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const mcref::TableFile a = mcref::read_table_file(plain), b = mcref::read_table_file(kept);
+  ASSERT_EQ(a.tables.size(), b.tables.size());
+  for (std::size_t k = 0; k < a.tables.size(); ++k) {
+    EXPECT_FALSE(a.tables[k].has_batch_values());
+    EXPECT_TRUE(b.tables[k].has_batch_values());
+    EXPECT_EQ(a.tables[k].sum, b.tables[k].sum);
+  }
+  EXPECT_EQ(mcref("info " + quote(plain)).out.find("values kept"), std::string::npos);
+  EXPECT_NE(mcref("info " + quote(kept)).out.find("(values kept)"), std::string::npos);
+}
+
 TEST_F(Cli, Tau0OutOfRangeIsRejected) {
   expect_rejected(experiment("tau0 = 0\nbeta = 0.8\n"), {"bad.toml", "geometry.tau0", "(0, 1)"});
   expect_rejected(experiment("tau0 = 1.5\nbeta = 0.8\n"), {"bad.toml", "geometry.tau0", "(0, 1)"});
