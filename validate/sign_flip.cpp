@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "models/core/rng.h"
+#include "validate/batch_gram.h"
 
 namespace mcref {
 
@@ -17,20 +18,8 @@ double sign_flip_p_value(const std::vector<double>& values, std::size_t per_batc
   const std::size_t B = static_cast<std::size_t>(batches);
   if (batches < 2 || batches > kMaxFlipBatches || values.size() != B * per_batch)
     throw std::logic_error("sign_flip_p_value: needs 2 to 64 batches, and batches x cells values");
-  // G_bc = sum_i x_ib x_ic with x_ib = d_ib / sqrt(sum_b d_ib^2): T(eps) = eps' G eps.
-  std::vector<double> G(B * B, 0.0), x(B);
-  for (std::size_t i : cells) {
-    double ss = 0;
-    for (std::size_t b = 0; b < B; ++b) {
-      x[b] = values[b * per_batch + i] - model[i];
-      ss += x[b] * x[b];
-    }
-    if (!(ss > 0)) continue;
-    const double scale = 1 / std::sqrt(ss);
-    for (double& v : x) v *= scale;
-    for (std::size_t b = 0; b < B; ++b)
-      for (std::size_t c = 0; c < B; ++c) G[b * B + c] += x[b] * x[c];
-  }
+  // G_bc = sum_i x_ib x_ic with x_ib = d_ib / sqrt(sum_b d_ib^2), d = values - model: T(eps) = eps' G eps.
+  const std::vector<double> G = batch_gram(values, per_batch, batches, cells, model, {});
   double observed = 0, bound = 0;  // |T| <= sum |G| for every pattern
   for (double g : G) {
     observed += g;
