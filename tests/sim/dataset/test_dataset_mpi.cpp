@@ -145,6 +145,91 @@ TEST_F(DatasetMpi, AnyRankCountGivesTheBytesOfOneProcess) {
   EXPECT_EQ(shell(dir_, "cmp one.h5 merged.h5", nullptr), 0);
 }
 
+// The other geometry kinds and slab walks, each a dataset of 4 entries over one
+// parameter: 1 process on 1 thread, shards on 2 and 1 threads merged, 2 ranks,
+// and a job stopped after one entry then resumed on 2 ranks give the same bytes.
+TEST_F(DatasetMpi, EveryGeometryKindGivesTheSameBytesForThreadsShardsRanksAndResume) {
+  struct Kind {
+    const char* name;
+    const char* base;
+    const char* key;
+    const char* range;
+  };
+  const char* measure = "[run]\nseed = 1\nbatches = 2\n\n[[measure]]\nquantity = \"brdf\"\ntheta_i_deg = [20, 60]\n"
+                        "theta_o_bins = 3\nphi_bins = 2\nsamples = 300\n";
+  const std::string micrograin = std::string(R"([geometry]
+kind = "micrograin"
+tau0 = 0.4
+beta = 1.0
+tile = 40
+
+[material.grain]
+type = "lambertian"
+albedo = 0.8
+
+[material.base]
+type = "lambertian"
+albedo = 0.5
+
+)") + measure;
+  const std::string spheres = std::string(R"([geometry]
+kind = "spheres"
+albedo = 0.8
+placement = "rsa"
+volume_fraction = 0.1
+tile = 20
+depth_mfp = 10
+
+)") + measure;
+  const std::string vdb_wave = std::string(R"([geometry]
+kind = "slab"
+backend = "openvdb"
+walk = "wave"
+tile = 1.0
+lateral_voxels = 4
+depth_voxels = 16
+
+[[geometry.layer]]
+phase = "sggx_surface"
+alpha = 0.5
+thickness = 1.0
+density = 1.0
+profile = "linear"
+profile_top = 0.5
+profile_bottom = 1.5
+albedo = 0.9
+
+)") + measure;
+  const std::string next_event = with(kBase, "SAMPLES", "300").insert(std::string(kBase).find("\n[["),
+                                                                       "\nestimator = \"next_event_mis\"");
+  const Kind kinds[] = {
+      {"micrograin", micrograin.c_str(), "geometry.tau0", "[0.2, 0.6]"},
+      {"spheres", spheres.c_str(), "geometry.albedo", "[0.3, 0.9]"},
+      {"openvdb wave", vdb_wave.c_str(), "geometry.layer.0.albedo", "[0.3, 0.9]"},
+      {"next-event", next_event.c_str(), "geometry.layer.0.albedo", "[0.3, 0.9]"},
+  };
+  for (const Kind& k : kinds) {
+    SCOPED_TRACE(k.name);
+    for (const auto& f : fs::directory_iterator(dir_)) fs::remove_all(f.path());
+    std::ofstream(dir_ / "base.toml") << k.base;
+    std::ofstream(dir_ / "ds.toml") << "[dataset]\nexperiment = \"base.toml\"\nentries = 4\nseed = 7\n\n[[parameter]]\nkey = \""
+                                    << k.key << "\"\nrange = " << k.range << "\n";
+    std::string err;
+    ASSERT_EQ(shell(dir_, mcref("dataset ds.toml -o one.h5 --threads 1 --quiet"), &err), 0) << err;
+    ASSERT_EQ(shell(dir_, mcref("dataset ds.toml -o s0.h5 --shard 0/2 --threads 2 --quiet"), &err), 0) << err;
+    ASSERT_EQ(shell(dir_, mcref("dataset ds.toml -o s1.h5 --shard 1/2 --threads 1 --quiet"), &err), 0) << err;
+    ASSERT_EQ(shell(dir_, mcref("merge s1.h5 s0.h5 -o merged.h5 --quiet"), &err), 0) << err;
+    EXPECT_EQ(shell(dir_, "cmp one.h5 merged.h5", nullptr), 0) << "shards on 2 and 1 threads changed the bytes";
+    ASSERT_EQ(shell(dir_, mcref_ranks(2, "dataset ds.toml -o np2.h5 --quiet"), &err), 0) << err;
+    EXPECT_EQ(shell(dir_, "cmp one.h5 np2.h5", nullptr), 0) << "2 ranks changed the bytes";
+    ASSERT_EQ(shell(dir_, mcref("dataset ds.toml -o r.h5 --stop-after 1 --threads 2 --quiet"), &err), 0) << err;
+    EXPECT_EQ(parts("r.h5"), 1);
+    ASSERT_EQ(shell(dir_, mcref_ranks(2, "dataset ds.toml -o r.h5 --threads 1"), &err), 0) << err;
+    EXPECT_NE(err.find(", 1 resumed)"), std::string::npos) << err;
+    EXPECT_EQ(shell(dir_, "cmp one.h5 r.h5", nullptr), 0) << "a resume on 2 ranks changed the bytes";
+  }
+}
+
 TEST_F(DatasetMpi, StoppedJobAndKilledRankResumeWithAnyRankCount) {
   write(12000, 8);  // 16 entries of about 0.1 s each
   std::string err;

@@ -1,6 +1,6 @@
 // mcref simulate under mpirun (issue #17): the batches spread over the ranks
 // and reduced on rank 0 in batch order give the bytes of one process (cmp,
-// with SOURCE_DATE_EPOCH fixing the date), for every geometry kind and for
+// with SOURCE_DATE_EPOCH fixing the date), for every geometry kind and slab walk, and for
 // count attributes (the sphere phase estimator's missed rays); bad input is
 // one line from rank 0 and a non-zero exit on every rank, nothing written.
 #include <algorithm>
@@ -43,6 +43,12 @@ TEST_F(SimulateMpi, RanksGiveTheBytesOfOneProcess) {
       {"slab_single_layer", "--set run.batches=5 --set measure.0.samples=300"},
       {"spheres_phase", "--set run.batches=5"},
       {"micrograin_brdf_diffuse", "--set run.batches=5 --set measure.0.samples=300"},
+      // The slab's other walks: the data-parallel one, next-event estimation, the
+      // OpenVDB depth profile (scalar and wave).
+      {"slab_single_layer", "--set run.batches=5 --set measure.0.samples=300 --set geometry.walk=wave"},
+      {"slab_single_layer", "--set run.batches=5 --set measure.0.samples=300 --set geometry.estimator=next_event_mis"},
+      {"slab_openvdb_profile", "--set run.batches=5 --set measure.0.samples=300"},
+      {"slab_openvdb_profile", "--set run.batches=5 --set measure.0.samples=300 --set geometry.walk=wave"},
   };
   for (const Case& c : cases) {
     // The command lines are the same (stored in the file), only the directory differs.
@@ -55,7 +61,7 @@ TEST_F(SimulateMpi, RanksGiveTheBytesOfOneProcess) {
       const std::string pieces = n == 3 ? "MCREF_MPI_PIECE_BYTES=4096 " : "";
       ASSERT_EQ(shell(dir_ / "ranks", "SOURCE_DATE_EPOCH=1 " + pieces + mcref_ranks(n, args), &err), 0) << err;
       EXPECT_EQ(rank_codes(dir_ / "ranks", n), std::vector<int>(static_cast<std::size_t>(n), 0));
-      EXPECT_EQ(shell(dir_, "cmp one/t.h5 ranks/t.h5", nullptr), 0) << c.experiment << " on " << n << " ranks";
+      EXPECT_EQ(shell(dir_, "cmp one/t.h5 ranks/t.h5", nullptr), 0) << c.experiment << " " << c.sets << " on " << n << " ranks";
     }
   }
 }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <cstring>
 #include <filesystem>
 #include <string>
 
@@ -263,6 +264,54 @@ TEST_F(Cli, ValidateReusesTablesOnlyWithTheSameSimFingerprint) {
   EXPECT_TRUE(validate());
   write("x.toml", experiment("tau0 = 0.4\nbeta = 0.8\n"));
   EXPECT_FALSE(validate()) << "another configuration: simulated again";
+}
+
+// validate on 1 and 2 threads gives the same tables (sums, squares and kept
+// batch values, bit for bit) and the same results.json but for the command
+// line: the simulations and the model checks, including a model with Monte
+// Carlo noise of its own (volumetric_mc) and the micrograin models' parallel
+// quadrature.
+TEST_F(Cli, ValidateGivesTheSameTablesAndResultsOnAnyThreadCount) {
+  const std::string src = std::string(MCREF_SOURCE_DIR) + "/validate/experiments/";
+  write("suite.toml",
+        "[suite]\nname = \"s\"\n"
+        "[[case]]\nname = \"slab\"\nexperiment = \"" + src + "slab_single_layer.toml\"\n"
+        "set = [\"run.batches=3\", \"measure.0.samples=300\"]\n"
+        "[[case]]\nname = \"grains\"\nexperiment = \"" + src + "micrograin_brdf_diffuse.toml\"\n"
+        "set = [\"run.batches=3\", \"geometry.tile=40\", \"measure.0.samples=300\", \"measure.1.samples=300\",\n"
+        "  \"measure.0.theta_i_deg=[30]\", \"measure.0.theta_o_bins=3\", \"measure.0.phi_bins=3\", \"measure.1.theta_i_deg=[30]\"]\n"
+        "[[case]]\nname = \"spheres\"\nexperiment = \"" + src + "spheres_packing.toml\"\n"
+        "set = [\"run.batches=3\", \"geometry.tile=20\", \"measure.0.samples=300\"]\n"
+        "[[case.check]]\ntable = \"brdf\"\nmodel = \"volumetric_mc\"\n");
+  std::string results[2];
+  std::vector<mcref::TableFile> files[2];
+  for (int threads : {1, 2}) {
+    const std::string out = path("out" + std::to_string(threads));
+    const Result r = shell("SOURCE_DATE_EPOCH=1 " + quote(MCREF_BINARY) + " validate " + quote(path("suite.toml")) + " -o " +
+                           quote(out) + " --quiet --threads " + std::to_string(threads));
+    ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 1) << r.err;
+    for (const std::string& line : lines(slurp(out + "/results.json")))
+      if (line.find("\"command_line\"") == std::string::npos) results[threads - 1] += line + "\n";
+    for (const char* c : {"slab", "grains", "spheres"})
+      files[threads - 1].push_back(mcref::read_table_file(out + "/tables/" + c + ".h5"));
+  }
+  EXPECT_FALSE(results[0].empty());
+  EXPECT_TRUE(results[0] == results[1]) << "results.json differs on 1 and 2 threads";
+  for (std::size_t c = 0; c < files[0].size(); ++c) {
+    ASSERT_EQ(files[0][c].tables.size(), files[1][c].tables.size());
+    EXPECT_EQ(files[0][c].provenance.config, files[1][c].provenance.config);
+    for (std::size_t t = 0; t < files[0][c].tables.size(); ++t) {
+      const mcref::Table &a = files[0][c].tables[t], &b = files[1][c].tables[t];
+      EXPECT_FALSE(a.batch_values.empty()) << a.name;
+      // Bit for bit (a NaN, a batch without samples, equals itself).
+      const auto same = [](const std::vector<double>& x, const std::vector<double>& y) {
+        return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0;
+      };
+      EXPECT_TRUE(same(a.sum, b.sum)) << a.name;
+      EXPECT_TRUE(same(a.sum_sq, b.sum_sq)) << a.name;
+      EXPECT_TRUE(same(a.batch_values, b.batch_values)) << a.name;
+    }
+  }
 }
 
 // Messages show the value as given: a number just past a bound in full, not
