@@ -23,8 +23,10 @@ def _worst(values):
 
 def summarize(results):
     """One dict per model (first-seen order): model, exact, description, cases,
-    checks, counts (per status), verdict, figures and the worst chi2_per_dof,
-    max_abs_z, max_rel_error and rms_rel_error."""
+    checks, counts (per status), verdict, figures, the worst chi2_per_dof,
+    max_abs_z, max_rel_error and rms_rel_error, and for an exact model the
+    smallest p of its joint tests (smallest_p; None for approximate models,
+    which p does not judge)."""
     by_model = {}
     for case in results["cases"]:
         for c in case["checks"]:
@@ -44,5 +46,7 @@ def summarize(results):
                "checks": len(m["checks"]), "counts": counts, "verdict": verdict, "figures": m["figures"]}
         for key in ("chi2_per_dof", "max_abs_z", "max_rel_error", "rms_rel_error"):
             row[key] = _worst(c[key] for c in judged)
+        p_values = [c["p_value"] for c in judged if c.get("p_value") is not None and c["cells"] > 0]
+        row["smallest_p"] = min(p_values) if exact and p_values else None
         rows.append(row)
     return rows

@@ -48,6 +48,14 @@ def error_colour(value, good, bad):
     return f"hsl({120 * (1 - t):.0f}, 70%, 82%)"
 
 
+def p_colour(p, significance):
+    """Background colour of an exact model's p: green at or above 0.05, red at or
+    below the significance level, through yellow on a log scale; none if unknown."""
+    if p is None:
+        return ""
+    return error_colour(1 / max(p, 1e-300), 1 / 0.05, 1 / significance)
+
+
 def case_plots(case_names, plot_files):
     """Plot files per case: <case>.png and <case>_<anything>.png, each given to
     the longest case name it fits (a case named like another's prefix does
@@ -177,7 +185,10 @@ def render_results(out_dir, results, not_reproduced_path):
         # An exact model is judged by chi^2 and z: one noisy cell near zero can
         # give it a large relative error while it passes, so that is not coloured.
         m["rel_colour"] = "" if m["exact"] else error_colour(m["max_rel_error"], 0.01, 0.5)
-        m["chi2_colour"] = error_colour(m["chi2_per_dof"], 1.5, 10)
+        # An exact model's chi2/dof is not coloured either: on correlated cells (they share the
+        # batches' geometry) a true model can reach a large one. Its joint test's p is.
+        m["chi2_colour"] = "" if m["exact"] else error_colour(m["chi2_per_dof"], 1.5, 10)
+        m["p_colour"] = p_colour(m["smallest_p"], results["significance"])
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(HERE), autoescape=True,
                              undefined=jinja2.StrictUndefined, trim_blocks=True, lstrip_blocks=True)
     env.filters["g"] = lambda v, spec=".3g": "–" if v is None else format(v, spec)

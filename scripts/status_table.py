@@ -22,14 +22,14 @@ def fmt(v, spec, scale=1.0, unit=""):
     return "–" if v is None else f"{scale * v:{spec}}{unit}"
 
 
-print("| model | kind | simulation | checks | verdict | worst χ²/dof | max \\|z\\| | worst rms rel. error |")
-print("|---|---|---|---|---|---|---|---|")
+print("| model | kind | simulation | checks | verdict | smallest p | worst χ²/dof | max \\|z\\| | worst rms rel. error |")
+print("|---|---|---|---|---|---|---|---|---|")
 for r in summarize(results):
     fails = r["counts"]["FAIL"]
     verdict = f"FAIL ({fails})" if fails else r["verdict"]
     figures = ", ".join(r["figures"][:3]) + (", …" if len(r["figures"]) > 3 else "")
     print(f"| `{r['model']}` | {'exact' if r['exact'] else 'approximate'} | {figures} | "
-          f"{r['checks']} | {verdict} | {fmt(r['chi2_per_dof'], '.2f')} | {fmt(r['max_abs_z'], '.1f')} | "
+          f"{r['checks']} | {verdict} | {fmt(r['smallest_p'], '.2g')} | {fmt(r['chi2_per_dof'], '.2f')} | {fmt(r['max_abs_z'], '.1f')} | "
           f"{fmt(r['rms_rel_error'], '.1f', 100, ' %')} |")
 
 

@@ -347,7 +347,7 @@ std::vector<Experiment> plan_suite(const Suite& suite, int threads) {
     // (cases may share an experiment, with other `set`s).
     try {
       experiments.push_back(load_experiment(c.experiment_path, c.sets));
-      check_memory(experiments.back(), threads);
+      check_memory(experiments.back(), threads, /*keep_batch_values=*/true);  // as run_case simulates
     } catch (const ConfigError& e) {
       throw ConfigError(c.file, c.key, "case \"" + c.name + "\": " + e.what());
     }

@@ -92,6 +92,19 @@ TEST_F(Cli, TablesTooLargeForMemoryAreRefusedWithTheirSize) {
   const Result v = mcref("validate " + quote(path("s.toml")) + " -o " + quote(path("out")) + " --quiet");
   expect_one_line_error(v, {"big.toml", "measure.0.theta_o_bins", "GB"});
   EXPECT_FALSE(fs::exists(path("out")));
+  // validate's tables keep their batch values, and the up-front check counts them:
+  // th.toml's 4e5 cells need about 20 MB, and 200 MB more with 64 batches' values.
+  write("s.toml", "[suite]\nname = \"s\"\n[[case]]\nname = \"a\"\nexperiment = \"x.toml\"\n"
+                  "[[case]]\nname = \"b\"\nexperiment = \"th.toml\"\nset = [\"run.batches=64\"]\n");
+  const Result kept = shell("MCREF_MEMORY_LIMIT=100M " + quote(MCREF_BINARY) + " validate " + quote(path("s.toml")) +
+                            " -o " + quote(path("out")) + " --quiet");
+  EXPECT_EQ(kept.exit_code, 2);
+  expect_one_line_error(kept, {"s.toml", "case \"b\"", "th.toml", "budget of 100 MB (MCREF_MEMORY_LIMIT)"});
+  EXPECT_FALSE(fs::exists(path("out"))) << "case a ran before case b's tables were found too large";
+  // Without the batch values the same tables fit that budget.
+  const Result plain = shell("MCREF_MEMORY_LIMIT=100M " + quote(MCREF_BINARY) + " simulate " + quote(path("th.toml")) +
+                             " -o " + quote(path("o.h5")) + " --quiet --set run.batches=64");
+  EXPECT_EQ(plain.exit_code, 0) << plain.err;
 }
 
 // The largest dataset allowed (2^40 entries) starts at once and holds only
