@@ -182,8 +182,8 @@ def render_results(out_dir, results, not_reproduced_path):
              "worst": max((c["rule_accuracy"]["worst_rel_error"] for c in ruled), default=None)}
     models = summarize(results)
     for m in models:
-        # An exact model is judged by chi^2 and z: one noisy cell near zero can
-        # give it a large relative error while it passes, so that is not coloured.
+        # An exact model is judged by its joint test's p and the |z| bound: one noisy cell
+        # near zero can give it a large relative error while it passes, so that is not coloured.
         m["rel_colour"] = "" if m["exact"] else error_colour(m["max_rel_error"], 0.01, 0.5)
         # An exact model's chi2/dof is not coloured either: on correlated cells (they share the
         # batches' geometry) a true model can reach a large one. Its joint test's p is.

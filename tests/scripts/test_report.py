@@ -108,6 +108,38 @@ def test_relative_error_is_coloured_for_approximate_models_only(run_dir):
     assert coloured >= 1
 
 
+def test_smallest_p_is_given_and_coloured_for_exact_models_and_their_chi2_is_not(copy_of):
+    # One check of the exact model (p1_eq10) given p = 0.002: between the significance (0.001,
+    # red) and 0.05 (green), so its colour is neither; its smallest p is that check's.
+    r = results(copy_of)
+    exact = [c for case in r["cases"] for c in case["checks"] if c["exact"] and c["status"] == "pass"]
+    assert len(exact) >= 2
+    exact[1]["p_value"] = 0.002
+    with open(os.path.join(copy_of, "results.json"), "w") as f:
+        json.dump(r, f)
+    render(copy_of)
+    summary = page(copy_of).split('id="summary"')[1].split("<details")[0]
+    rows = re.findall(r"<tr><td title=\"[^\"]*\"><code>([^<]+)</code></td><td>(exact|approximate)</td>(.*?)</tr>",
+                      summary, re.S)
+    seen = set()
+    for model, kind, cells in rows:
+        (p_style, p_text), (chi2_style, chi2_text) = re.findall(r'style="background: ([^"]*)">([^<]*)</td>', cells)[:2]
+        if kind == "exact" and model == exact[1]["model"]:
+            assert p_text == "0.002" and chi2_text != "–", cells
+            hue = int(re.match(r"hsl\((\d+),", p_style).group(1))
+            assert 0 < hue < 120, p_style
+            assert chi2_style == "", cells
+            seen.add(kind)
+        elif kind == "approximate" and chi2_text != "–":
+            assert p_text == "–" and p_style == "" and chi2_style.startswith("hsl("), cells
+            seen.add(kind)
+    assert seen == {"exact", "approximate"}
+    code, out, err = run(PYTHON, os.path.join(SCRIPTS, "status_table.py"), copy_of)
+    assert code == 0, err
+    row = next(line for line in out.splitlines() if line.startswith(f"| `{exact[1]['model']}` | exact |"))
+    assert "| pass | 0.002 |" in row, row
+
+
 def test_every_plot_of_a_case_is_embedded_and_figure_plots_are_indexed(copy_of):
     plots = os.path.join(copy_of, "plots")
     first = first_png(plots)
