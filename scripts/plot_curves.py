@@ -21,8 +21,11 @@ X_AXIS = {"p1": "r", "ndf": "theta_m", "tau_plus": "theta_i", "tau_height": "h",
           "albedo": "theta_i", "transmittance": "theta_i", "energy_balance": "theta_i",
           "brdf": "theta_i", "btdf": "theta_i"}
 # Which indices of an axis to draw as series (default: all, thinned to MAX_SERIES);
-# negative indices count from the end.
-PICK = {"brdf_modes": {"theta_i": [0, 7, 15]}, "pore_visibility": {"phi": [0, -1]},
+# negative indices count from the end. brdf_modes: two oblique theta_i (57 and 85 deg in
+# the suite) with every mode k: at normal incidence k = 1, 2 vanish, and k = 1 is where
+# Eq. 22 as printed is half the simulation (d'Eon's factor 2; three theta_i were thinned
+# to 6 series that dropped k = 1).
+PICK = {"brdf_modes": {"theta_i": [7, 15]}, "pore_visibility": {"phi": [0, -1]},
         "pore_visibility_independent": {"phi": [0, -1]}}
 MAX_SERIES = 6
 MAX_COLUMNS = 3

@@ -38,12 +38,20 @@ def short_names(names):
     return [n[len(prefix):] or n for n in names]
 
 
+# The series a figure overlay shows, where not the first: the Fourier mode k = 1 of
+# d'Eon's Fig. 2 / 5, the one where Eq. 22 as printed and corrected differ.
+PREFERRED_SERIES = {"brdf_modes": "k = 1"}
+
+
 def first_curve(table):
-    """(channel label, View with one series) of the first non-zero curve, or None."""
+    """(channel label, View with one series) of the first non-zero curve (or of the
+    preferred one, PREFERRED_SERIES), or None."""
+    want = PREFERRED_SERIES.get(table.quantity)
     for chlabel, view in plot_curves.table_views(table):
         plot_curves.drop_zero_series(view, table)
         if view.series:
-            view.series = view.series[:1]
+            preferred = [s for s in view.series if want and want in s.label]
+            view.series = preferred[:1] or view.series[:1]
             return chlabel, view
     return None
 

@@ -161,7 +161,7 @@ GREEK = {"theta_i": "θi", "theta_o": "θo", "theta_m": "θm", "phi": "φ", "phi
          "g1_conditional": "G1(i | m)", "ndf": "D(m)", "vndf": "Dv(i, m)", "p1": "p¹(r)",
          "brdf": "f_r", "btdf": "f_t", "brdf_modes": "f⁽ᵏ⁾", "albedo": "albedo",
          "transmittance": "transmittance", "energy_balance": "scattered energy",
-         "spherical_albedo": "k_d (spherical albedo)", "phase": "p(μ)",
+         "spherical_albedo": "k_d (spherical albedo)", "phase": "2π p(μ) (per unit μ)",
          "pore_visibility": "pore visibility", "pore_visibility_independent": "pore visibility (independent)"}
 
 

@@ -127,6 +127,12 @@ std::string joint_text(const Comparison& c, double alpha) {
 
 }  // namespace
 
+void settle_joint_test(Comparison& c, double alpha) {
+  if (!flips_too_few(c, alpha)) return;
+  c.p_value = c.box_p_value;
+  c.joint_test = "Box";
+}
+
 Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance) {
   char buf[512];
   if (c.identically_zero) {

@@ -84,4 +84,9 @@ struct Verdict {
 // which needs at least one cell with |sim| > 5 stderr.
 Verdict judge(const Comparison& c, bool exact, double alpha, double tolerance);
 
+// After judge(): where the sign-flip test cannot give p below alpha (too few
+// batches for that level), judge() used Box's p; this makes p_value and
+// joint_test say so ("Box"), for what results.json and Python report.
+void settle_joint_test(Comparison& c, double alpha);
+
 }  // namespace mcref

@@ -291,6 +291,7 @@ CheckResult run_check(const Check& chk, const Table& t, const Experiment& ex, co
   r.comparison = compare(t.values(), t.stderrs(), r.model_values, t.batches, model_se, t.channels(),
                          t.has_batch_values() ? t.batch_values : none);
   r.verdict = judge(r.comparison, info->exact, suite.significance, chk.tolerance);
+  settle_joint_test(r.comparison, suite.significance);
   return r;
 }
 

@@ -143,6 +143,8 @@ Table read_table_group(hid_t parent, const std::string& name) {
   std::vector<Axis> axes;
   std::stringstream ss(h5::read_string_attr(group, "axes"));
   for (std::string a; std::getline(ss, a, ',');) {
+    for (const Axis& seen : axes)
+      if (seen.name == a) throw std::runtime_error("table " + name + " names axis " + a + " twice");
     h5::Handle scale(H5Dopen2(group, a.c_str(), H5P_DEFAULT), H5Dclose);
     if (!scale.valid()) throw std::runtime_error("missing axis " + a);
     // ("unit" and "<axis>_edges": files from before the CF names)
@@ -158,9 +160,12 @@ Table read_table_group(hid_t parent, const std::string& name) {
   t.units = h5::read_string_attr(group, "units");
   t.description = h5::read_string_attr(group, "description");
   t.batches = h5::read_int_attr(group, "batches");
+  const std::size_t cells = t.cells();  // the product of the axes' sizes (the constructor's zeros)
   t.sum = h5::read_doubles(group, "sum");
   t.sum_sq = h5::read_doubles(group, "sum_sq");
-  if (t.sum.size() != t.cells() || t.sum_sq.size() != t.cells()) throw std::runtime_error("table shape mismatch");
+  if (t.sum.size() != cells || t.sum_sq.size() != cells)
+    throw std::runtime_error("table " + name + ": sum holds " + std::to_string(t.sum.size()) + " values, its axes " +
+                             std::to_string(cells) + " cells");
   // value and stderr are derived from the sums (and not stored in "sums"); a
   // full table whose stored ones are missing or differ (bit for bit, NaN as
   // NaN) is damaged or not mcref's.

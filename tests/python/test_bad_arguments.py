@@ -203,6 +203,24 @@ def test_paths_may_be_pathlib_paths(tmp_path):
     assert mcref.simulate_file(tmp_path / "e.toml", seed=1, threads=1).names == ["tau_plus"]
 
 
+def test_sample_counts_beyond_the_memory_budget_are_refused():
+    # n = 2^62: n * k wrapped round to 0, and the sampler returned empty arrays.
+    with pytest.raises(mcref.ConfigError, match="key 'n'.*budget"):
+        mcref.samplers.lambert_sphere_phase(seed=1, n=2**62)
+
+
+def test_tables_are_not_written_onto_their_experiment_file(tmp_path):
+    # Before: the TOML was replaced by the HDF5 file (the CLI's -o refuses it).
+    exp = tmp_path / "e.toml"
+    exp.write_text('[geometry]\nkind = "micrograin"\ntau0 = 0.5\nbeta = 1.0\ntile = 40\n\n'
+                   '[[measure]]\nquantity = "tau_plus"\ntheta_i_deg = [0]\nsamples = 100\n')
+    before = exp.read_bytes()
+    t = mcref.simulate_file(exp, seed=1, threads=1)
+    with pytest.raises(mcref.ConfigError, match="is the input"):
+        mcref.write_tables(exp, t)
+    assert exp.read_bytes() == before and sorted(os.listdir(tmp_path)) == ["e.toml"]
+
+
 @pytest.mark.parametrize("call, key", [
     ("tau_plus_eq22(-0.5, 1.0, 0.3)", "tau0"),  # gave -0.514
     ("ndf_eq16(0.5, 0.0, 0.3)", "beta"),

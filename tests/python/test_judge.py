@@ -51,6 +51,9 @@ def test_judge_exact_model(kept):
     assert np.array_equal(w["z"], v["z"])
     off = mcref.judge(kept, model * 1.2)
     assert off["status"] == "FAIL", off["reason"]
+    # Below the sign-flip test's smallest p (its batches allow no less), Box decides, and says so.
+    low = mcref.judge(kept, model, significance=1e-9)
+    assert low["joint_test"] == "Box" and "Box" in low["reason"], low
     measured = mcref.judge(kept, model, exact=False)
     assert measured["status"] == "measured"
     assert mcref.judge(kept, model, exact=False, tolerance=0.5)["status"] == "pass"
@@ -66,6 +69,10 @@ def test_judge_bad_arguments(kept):
         mcref.judge(kept, model[:2])
     with pytest.raises(mcref.ConfigError, match="model_stderr.*shape"):
         mcref.judge(kept, model, model_stderr=np.ones(3))
+    # A negative or NaN model error (a negative one passed a model 3x off).
+    for bad in (-1.0, float("nan"), float("inf")):
+        with pytest.raises(mcref.ConfigError, match="model_stderr.*allowed"):
+            mcref.judge(kept, model * 3, model_stderr=np.full(model.shape, bad))
 
 
 def test_batch_values_in_xarray(kept):

@@ -227,4 +227,13 @@ TEST(CorrelatedCells, SignificanceBelowTheSignFlipFloorUsesBox) {
   EXPECT_NE(low.reason.find("Box"), std::string::npos) << low.reason;
   EXPECT_EQ(usual.status, "FAIL") << usual.reason;
   EXPECT_NE(usual.reason.find("sign-flip test over"), std::string::npos) << usual.reason;
+  // What results.json reports is the p that decided: Box's at 1e-5, the sign-flip test's at 1e-3.
+  Comparison settled = c;
+  settle_joint_test(settled, 1e-3);
+  EXPECT_EQ(settled.joint_test, "sign-flip");
+  EXPECT_EQ(settled.p_value, c.p_value);
+  settle_joint_test(settled, 1e-5);
+  EXPECT_EQ(settled.joint_test, "Box");
+  EXPECT_EQ(settled.p_value, c.box_p_value);
+  EXPECT_LT(settled.p_value, 1e-5);
 }

@@ -2,6 +2,7 @@
 // (array of shape (n, k), values in [0, 1)) or from a seed (n draws of the
 // project's Rng, models/core/rng.h), for users' own chi-square tests.
 #include <cmath>
+#include <cstdio>
 #include <functional>
 
 #include "models/core/rng.h"
@@ -14,6 +15,7 @@
 #include "models/sggx/flake_phase.h"
 #include "models/sggx/sggx_distribution.h"
 #include "sim/experiment/config_error.h"
+#include "sim/experiment/table_plan.h"
 #include "validate/python/bindings.h"
 
 namespace mcref::python {
@@ -36,6 +38,16 @@ std::vector<double> uniforms(const py::object& u, const py::object& seed, std::i
   }
   if (seed.is_none()) throw ConfigError("<python>", "u", "give either uniforms u or a seed (with n)");
   if (n < 1) throw ConfigError("<python>", "n", "must be at least 1");
+  // The uniforms and the samples (up to 4 numbers each), against the memory budget
+  // (before: n * k wrapped round to 0 for n = 2^62 and gave empty arrays).
+  std::string why;
+  const double budget = memory_budget(&why), need = 8.0 * static_cast<double>(n) * (k + 4);
+  if (need > budget) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, " samples would need about %.3g GB, more than the budget of %.3g GB (", need / 1e9,
+                  budget / 1e9);
+    throw ConfigError("<python>", "n", "= " + std::to_string(n) + buf + why + ")");
+  }
   Rng rng(integer_argument("seed", seed, UINT64_MAX));
   std::vector<double> v(static_cast<std::size_t>(n) * k);
   for (double& x : v) x = rng.uniform();

@@ -223,7 +223,10 @@ void bind_tables(py::module_& m) {
 
   m.def("write_tables", [](const std::filesystem::path& p, const TableFile& file) {
     const std::string path = p.string();
-    check_output_file(path, {}, "path");
+    // Never onto the experiment file the tables came from (as the CLI's -o).
+    const std::string& source = file.provenance.source_file;
+    check_output_file(path, source.empty() || source.front() == '<' ? std::vector<std::string>{} : std::vector{source},
+                      "path");
     py::gil_scoped_release release;
     write_table_file(path, file);
   }, py::arg("path"), py::arg("tables"),
@@ -249,10 +252,15 @@ void bind_tables(py::module_& m) {
     check_argument("tolerance", tolerance, {0, INFINITY, false, true});
     const std::vector<double> m = flat(t, model, "model");
     const std::vector<double> mse = model_stderr.is_none() ? std::vector<double>{} : flat(t, Array(model_stderr), "model_stderr");
+    for (std::size_t i = 0; i < mse.size(); ++i)  // (a negative one passed a model 3x off; NaN was taken as 0)
+      if (std::isfinite(m[i]) && !(mse[i] >= 0 && mse[i] < INFINITY))
+        throw ConfigError("<python>", "model_stderr", "= " + exact_text(mse[i]) +
+                                                          " is out of range where the model is defined; allowed [0, inf)");
     static const std::vector<double> none;
-    const Comparison c = compare(t.values(), t.stderrs(), m, t.batches, mse, t.channels(),
-                                 use_batch_values && t.has_batch_values() ? t.batch_values : none);
+    Comparison c = compare(t.values(), t.stderrs(), m, t.batches, mse, t.channels(),
+                           use_batch_values && t.has_batch_values() ? t.batch_values : none);
     const Verdict v = judge(c, exact, significance, tolerance);
+    settle_joint_test(c, significance);
     py::dict d;
     d["status"] = v.status;
     d["reason"] = v.reason;

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/hdf5/h5_util.h"
 #include "tests/validate/app/cli_fixture.h"
 
 namespace fs = std::filesystem;
@@ -290,6 +291,26 @@ TEST_F(Cli, EditedOrDamagedTablesAreRefused) {
     H5Fclose(f);
   }
   expect_one_line_error(mcref("info " + quote(path("novalue.h5"))), {"novalue.h5", "no value"});
+  // Axes that do not describe the sums (none, or one named twice) are refused; they
+  // were read past the end of the sums (a crash in Python, garbage in merge).
+  const std::string three = write("three.toml", experiment("tau0 = 0.5\nbeta = 0.8\n", "",
+                                                          "quantity = \"tau_plus\"\ntheta_i_deg = [0, 30, 60]\nsamples = 200\n"));
+  ASSERT_EQ(mcref("simulate " + quote(three) + " -o " + quote(path("three.h5")) + " --quiet").exit_code, 0);
+  std::ofstream(path("three_legacy.h5"), std::ios::binary) << slurp(path("three.h5")).substr(512);
+  for (const auto& [axes, piece] : {std::pair<std::string, std::string>{"", "sum holds 3 values, its axes 1 cells"},
+                                    {"theta_i,theta_i", "names axis theta_i twice"}}) {
+    fs::copy_file(path("three_legacy.h5"), path("axes.h5"), fs::copy_options::overwrite_existing);
+    {
+      const hid_t f = H5Fopen(path("axes.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+      ASSERT_GE(f, 0);
+      const hid_t g = H5Gopen2(f, "tau_plus", H5P_DEFAULT);
+      ASSERT_GE(H5Adelete(g, "axes"), 0);
+      mcref::h5::write_string_attr(g, "axes", axes);
+      H5Gclose(g);
+      H5Fclose(f);
+    }
+    expect_one_line_error(mcref("info " + quote(path("axes.h5"))), {"axes.h5", piece});
+  }
 }
 
 // SGGX alpha at the ends of its range on a tilted fibre layer (the worst
