@@ -9,8 +9,10 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "models/core/vec.h"
 #include "sim/experiment/config_error.h"
 #include "sim/experiment/simulate_kinds.h"
+#include "sim/experiment/toml_reader.h"
 
 namespace mcref {
 
@@ -130,6 +132,18 @@ void check_table_layout(const Experiment& ex, const Table& table, const std::str
   };
   if (layout(table) != layout(o))
     throw ConfigError(file, key, "table \"" + table.name + "\" is " + layout(table) + ", and the experiment's is " + layout(o));
+  // A polar angle outside a direction's range gives a model numbers outside its
+  // domain (tau_plus_eq22 at theta_i = 2 rad: -0.63): incidence in [0, pi/2],
+  // other polar angles in [0, pi] (a BTDF's theta_o); azimuths finite.
+  for (const Axis& a : table.axes) {
+    if (a.unit != "rad") continue;
+    const bool polar = a.name.rfind("theta", 0) == 0;
+    const double hi = a.name == "theta_i" ? kPi / 2 : kPi;
+    for (double v : a.values)
+      if (polar ? !(v >= 0 && v <= hi) : !std::isfinite(v))
+        throw ConfigError(file, key, "table \"" + table.name + "\": axis " + a.name + " holds " + exact_text(v) +
+                                         " rad; allowed " + (polar ? (hi < kPi ? "[0, pi/2]" : "[0, pi]") : "finite values"));
+  }
 }
 
 double measure_cells(const Measure& m, const Experiment& ex) { return measure_size(m, ex).cells; }

@@ -123,6 +123,12 @@ def test_evaluate_model_refuses_a_table_laid_out_otherwise():
                        np.ones((2, 1)), np.ones((2, 1)), batches=2)
     assert np.allclose(mcref.evaluate_model("tau_plus_eq22", same, CFG)[:, 0],
                        mcref.micrograin.tau_plus_eq22(0.5, 1.0, np.array([0.1, 0.5])), rtol=1e-12, atol=0)
+    # Incidence outside [0, pi/2] (it gave tau+ = -0.42 at 2 rad).
+    for values in ([0.1, 2.0], [-1.0, 0.5]):
+        far = mcref.Table("tau_plus", "tau_plus", [points("theta_i", "rad", values), points("phi_i", "rad", [0.0])],
+                          np.ones((2, 1)), np.ones((2, 1)), batches=2)
+        with pytest.raises(mcref.ConfigError, match=r"axis theta_i holds .* rad; allowed \[0, pi/2\]"):
+            mcref.evaluate_model("tau_plus_eq22", far, CFG)
 
 
 @pytest.mark.parametrize("edges", [[0, float("nan"), 2], [2, 1, 0], [0, 1, 1], [0, float("inf")]])
@@ -247,6 +253,10 @@ def test_grain_field_parameters_outside_the_models_domain_are_refused(call, key)
     ("radiative_transfer.h_isotropic_table(0.5, 1.5)", "mu"),  # 1.286, extrapolated
     ("radiative_transfer.h_isotropic(1.5, 0.5)", "albedo"),  # a ValueError without the value
     ("micrograin.p1_eq10(-1.0, 1.0)", "r"),  # -0.272
+    ("micrograin.tau_plus_eq22(0.5, 1.0, 2.0)", "theta"),  # -0.626
+    ("micrograin.g_dist(0.5, 1.0, 1.0, -0.3, 0.0, 0.5)", "theta_i"),
+    ("micrograin.lrpb23(0.5, 1.0, 0.3, 0.0, 2.0, 3.1, mcref.micrograin.MicroSurface(), "
+     "mcref.micrograin.MicroSurface())", "theta_o"),  # -0.0955
     ("micrograin.ggx_ndf(-0.3, 0.2)", "alpha"),  # 1.81
     ("micrograin.g_dist(0.5, 1.0, 1.0, 0.3, 0.0, 1.5)", "h"),  # 1
     ("micrograin.projected_cap_area(0.3, -2.0)", "h"),  # -9.42

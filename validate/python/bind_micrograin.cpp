@@ -27,6 +27,9 @@ const Range kPositive{0, INFINITY, true, true};  // densities, radii, roughness
 const Range kLength{0, INFINITY, false, true};   // distances (0 allowed)
 // A unit-space height h in [0, 1] (vNDF Eq. 3-5: the cap above h).
 double height_in(double h) { return argument("h", h, kUnitInterval); }
+// A direction's polar angle from the macro normal, in [0, pi/2] (beyond it the
+// formulas give numbers outside their domain: tau_plus_eq22 at 2 rad was -0.63).
+double theta_in(const char* name, double theta) { return argument(name, theta, Range{0, kPi / 2, false, false}); }
 
 mg::LambdaMethod lambda_method(const std::string& s) {
   if (s == "series4") return mg::LambdaMethod::Series4;
@@ -99,64 +102,64 @@ void bind_micrograin(py::module_& root) {
 
   // Visible filling factor, LRPB23 Sec. 5.1
   m.def("tau_beta_eq21", py::vectorize([](double tau0, double beta, double theta) {
-          return mg::tau_beta(tau0_in(tau0), beta_in(beta), theta);
+          return mg::tau_beta(tau0_in(tau0), beta_in(beta), theta_in("theta", theta));
         }),
         py::arg("tau0"), py::arg("beta"), py::arg("theta"),
         "LRPB23 Eq. 21: tau_beta = 1 - (1 - tau0)^(gamma_beta(theta) / cos theta), full ellipsoids.");
   m.def("tau_plus_eq22", py::vectorize([](double tau0, double beta, double theta) {
-          return mg::tau_plus(tau0_in(tau0), beta_in(beta), theta);
+          return mg::tau_plus(tau0_in(tau0), beta_in(beta), theta_in("theta", theta));
         }),
         py::arg("tau0"), py::arg("beta"), py::arg("theta"),
         "LRPB23 Eq. 22 (suite model tau_plus_eq22): visible filling factor of the half-ellipsoids,\n"
         "tau+ = 1 - sqrt((1 - tau_beta)(1 - tau0)); dimensionless, tau+(0) = tau0.");
   m.def("tau_plus_anisotropic", py::vectorize([](double tau0, double bx, double by, double theta, double phi) {
-          return mg::tau_plus(grain_field(tau0, bx, by), spherical_direction(theta, phi));
+          return mg::tau_plus(grain_field(tau0, bx, by), spherical_direction(theta_in("theta", theta), phi));
         }), py::arg("tau0"), py::arg("beta_x"), py::arg("beta_y"), py::arg("theta"), py::arg("phi"),
         "LRPB23 Eq. 22 in the unit space (any beta_x, beta_y).");
   m.def("layer_weight_eq24", py::vectorize([](double tau0, double beta, double theta_i, double theta_o) {
           const mg::GrainField f = iso(tau0, beta);
-          return mg::layer_weight(f, spherical_direction(theta_i, 0), spherical_direction(theta_o, 0));
+          return mg::layer_weight(f, spherical_direction(theta_in("theta_i", theta_i), 0), spherical_direction(theta_in("theta_o", theta_o), 0));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta_i"), py::arg("theta_o"),
         "LRPB23 Eq. 24: w+(i, o) = 1 - sqrt((1 - tau_beta(i))(1 - tau_beta(o))).");
 
   // Height-correlated masking (vNDF Eq. 3-5, 9-10)
   m.def("tau_height_sigma", py::vectorize([](double tau0, double bx, double by, double theta_i, double phi_i, double h) {
-          return mg::filling_factor_at_height(grain_field(tau0, bx, by), spherical_direction(theta_i, phi_i), height_in(h));
+          return mg::filling_factor_at_height(grain_field(tau0, bx, by), spherical_direction(theta_in("theta_i", theta_i), phi_i), height_in(h));
         }), py::arg("tau0"), py::arg("beta_x"), py::arg("beta_y"), py::arg("theta_i"), py::arg("phi_i"), py::arg("h"),
         "vNDF Eq. 4/10 (suite model tau_height_sigma): tau(i, h) = 1 - exp(-rho' sigma(i', h)),\n"
         "rho' = -ln(1 - tau0)/pi, h the unit-space height in [0, 1]; tau(i, 0) = tau+(i).");
   m.def("g_dist", py::vectorize([](double tau0, double bx, double by, double theta_i, double phi_i, double h) {
-          return mg::distant_masking(grain_field(tau0, bx, by), spherical_direction(theta_i, phi_i), height_in(h));
+          return mg::distant_masking(grain_field(tau0, bx, by), spherical_direction(theta_in("theta_i", theta_i), phi_i), height_in(h));
         }), py::arg("tau0"), py::arg("beta_x"), py::arg("beta_y"), py::arg("theta_i"), py::arg("phi_i"), py::arg("h"),
         "vNDF Eq. 3/9: height-correlated masking G_dist(i, h) = exp(-rho' sigma_s(i', h)).");
-  m.def("projected_cap_area", py::vectorize([](double theta_i, double h) { return mg::projected_cap_area(theta_i, height_in(h)); }),
+  m.def("projected_cap_area", py::vectorize([](double theta_i, double h) { return mg::projected_cap_area(theta_in("theta_i", theta_i), height_in(h)); }),
         py::arg("theta_i"), py::arg("h"),
         "vNDF Eq. 5: sigma(i, h) = pi (1 - h^2) + sigma_s(i, h), unit-space cap (theta_i unit-space).");
 
   // Smith Lambda and G1, LRPB23 Sec. 5.2
   m.def("lambda_series", py::vectorize([](double tau0, double beta, double theta, double n) {
-          return mg::lambda_series(iso(tau0, beta), theta, whole_argument("n", n, 0, 64));
+          return mg::lambda_series(iso(tau0, beta), theta_in("theta", theta), whole_argument("n", n, 0, 64));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta"), py::arg("n") = 4,
         "LRPB23 Eq. 25: Smith Lambda by the series truncated after F_n (closed forms for k <= 4).");
   m.def("lambda_quadrature", py::vectorize([](double tau0, double beta, double theta) {
-          return mg::lambda_quadrature(iso(tau0, beta), theta);
+          return mg::lambda_quadrature(iso(tau0, beta), theta_in("theta", theta));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta"),
         "Smith Lambda by quadrature of the exact NDF (Eq. 17); ~1e-10 relative up to 89 deg.");
   m.def("lambda_ggx_alpha_tilde", py::vectorize([](double tau0, double beta, double theta) {
-          return mg::lambda_ggx_equivalent(iso(tau0, beta), theta);
+          return mg::lambda_ggx_equivalent(iso(tau0, beta), theta_in("theta", theta));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta"), "GGX Lambda at alpha~ (LRPB23 Eq. 18).");
   m.def("g1_smith_quadrature", py::vectorize([](double tau0, double beta, double theta) {
-          return 1 / (1 + mg::lambda_quadrature(iso(tau0, beta), theta));
+          return 1 / (1 + mg::lambda_quadrature(iso(tau0, beta), theta_in("theta", theta)));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta"), "Smith G1 = 1/(1 + Lambda), Lambda by quadrature.");
   m.def("g1_smith_series_n4", py::vectorize([](double tau0, double beta, double theta) {
-          return 1 / (1 + mg::lambda_series(iso(tau0, beta), theta, 4));
+          return 1 / (1 + mg::lambda_series(iso(tau0, beta), theta_in("theta", theta), 4));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta"), "Smith G1 with Lambda from Eq. 25, terms F0..F4.");
   m.def("g1_smith_ggx_alpha_tilde", py::vectorize([](double tau0, double beta, double theta) {
-          return 1 / (1 + mg::lambda_ggx_equivalent(iso(tau0, beta), theta));
+          return 1 / (1 + mg::lambda_ggx_equivalent(iso(tau0, beta), theta_in("theta", theta)));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta"), "Smith G1 of GGX at alpha~ (Eq. 18).");
   m.def("g1_exact_tau_plus", py::vectorize([](double tau0, double beta, double theta) {
           const mg::GrainField f = iso(tau0, beta);
-          const Vec3 wi = spherical_direction(theta, 0);
+          const Vec3 wi = spherical_direction(theta_in("theta", theta), 0);
           return mg::tau_plus(f, wi) / (tau0 * (1 + mg::lambda_quadrature(f, wi)));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta"),
         "tau+(i) / (tau0 (1 + Lambda_quad(i))): visible grain area over the projected grain area.");
@@ -164,7 +167,7 @@ void bind_micrograin(py::module_& root) {
   // Visible NDF (vNDF Eq. 6, 11-13)
   m.def("vndf_eq13", py::vectorize([](double tau0, double bx, double by, double theta_i, double phi_i, double theta_m,
                                       double phi_m) {
-          return mg::visible_ndf(grain_field(tau0, bx, by), spherical_direction(theta_i, phi_i), spherical_direction(theta_m, phi_m));
+          return mg::visible_ndf(grain_field(tau0, bx, by), spherical_direction(theta_in("theta_i", theta_i), phi_i), spherical_direction(theta_m, phi_m));
         }), py::arg("tau0"), py::arg("beta_x"), py::arg("beta_y"), py::arg("theta_i"), py::arg("phi_i"),
         py::arg("theta_m"), py::arg("phi_m"),
         "vNDF Eq. 6/11-13 (suite model vndf_eq13): D_v(i, m) = tau0 <i.m>+ D(m) G_dist(i, h(m)) /\n"
@@ -200,7 +203,7 @@ void bind_micrograin(py::module_& root) {
             throw ConfigError("<python>", "part", "\"" + part + "\" must be one of total, grain, base");
           auto f = py::vectorize([&](double tau0, double beta, double ti, double pi_, double to, double po) {
             const mg::GrainField f = iso(tau0, beta);
-            const Vec3 i = spherical_direction(ti, pi_), o = spherical_direction(to, po);
+            const Vec3 i = spherical_direction(theta_in("theta_i", ti), pi_), o = spherical_direction(theta_in("theta_o", to), po);
             double v = 0;
             if (part != "base") v += mg::lrpb23_grain_part(f, grain, i, o, l);
             if (part != "grain") v += mg::lrpb23_base_part(f, base, i, o);
@@ -216,8 +219,8 @@ void bind_micrograin(py::module_& root) {
   m.def("gdist_grain", [](py::object tau0, py::object bx, py::object by, py::object ti, py::object pi_, py::object to,
                           py::object po, const mg::MicroSurface& grain) {
           return vectorized([&](double tau0, double bx, double by, double ti, double pi_, double to, double po) {
-            return mg::gdist_grain_single_scattering(grain_field(tau0, bx, by), grain, spherical_direction(ti, pi_),
-                                                     spherical_direction(to, po));
+            return mg::gdist_grain_single_scattering(grain_field(tau0, bx, by), grain, spherical_direction(theta_in("theta_i", ti), pi_),
+                                                     spherical_direction(theta_in("theta_o", to), po));
           }, tau0, bx, by, ti, pi_, to, po);
         }, py::arg("tau0"), py::arg("beta_x"), py::arg("beta_y"), py::arg("theta_i"), py::arg("phi_i"),
         py::arg("theta_o"), py::arg("phi_o"), py::arg("grain"),
