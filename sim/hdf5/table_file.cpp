@@ -80,7 +80,10 @@ namespace {
 // table's group and an axis's datasets are named after them, beside the
 // table's own datasets.
 void check_names(const std::string& path, const TableFile& f) {
-  const auto usable = [](const std::string& n) { return !n.empty() && n != "." && n != ".." && n.find('/') == std::string::npos; };
+  // (A NUL would cut the name short in the file.)
+  const auto usable = [](const std::string& n) {
+    return !n.empty() && n != "." && n != ".." && n.find('/') == std::string::npos && n.find('\0') == std::string::npos;
+  };
   std::set<std::string> tables;
   for (const Table& t : f.tables) {
     if (!usable(t.name)) throw ConfigError(path, "", "table name \"" + t.name + "\" must be non-empty, not . or .., and without '/'");
@@ -91,6 +94,12 @@ void check_names(const std::string& path, const TableFile& f) {
         if (!usable(a.name) || !taken.insert(n).second)
           throw ConfigError(path, "", "table \"" + t.name + "\": axis name \"" + a.name + "\" must be non-empty, without '/', "
                                       "not value, stderr, sum, sum_sq, bnds, batch_values or batch, and unlike the others and their _bounds and _label");
+    // Notes under the layout's own attribute names were refused by HDF5 as "disk full?", or
+    // made the file unreadable (storage).
+    for (const auto& [key, value] : t.attributes)
+      if (!usable(key) || reserved_table_attribute(key) || value.find('\0') != std::string::npos)
+        throw ConfigError(path, "", "table \"" + t.name + "\": attribute \"" + key + "\" must be non-empty, without '/' or NUL, "
+                                    "with a value without NUL, and not quantity, units, description, batches, axes or storage");
   }
 }
 

@@ -31,6 +31,8 @@ std::vector<double> edges_from_bounds(const std::vector<double>& b, const std::s
 }
 }  // namespace
 
+bool reserved_table_attribute(const std::string& name) { return kReservedAttrs.count(name) > 0; }
+
 std::vector<std::string> axis_labels(const Table& t, const Axis& a) {
   if (a.name == "channel" && a.size() == 3) return {"R", "G", "B"};
   const auto names = t.attributes.find("components");

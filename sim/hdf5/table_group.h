@@ -27,6 +27,9 @@
 namespace mcref {
 
 enum class TableStorage { kFull, kLean, kSums };
+// The group attributes the layout itself uses (quantity, units, description,
+// batches, axes, storage): a table's notes cannot take these names.
+bool reserved_table_attribute(const std::string& name);
 void write_table_group(hid_t parent, const Table& table, int compression, TableStorage storage = TableStorage::kFull);
 // The group's storage attribute: "lean" or "sums", or "full" when absent.
 std::string table_group_storage(hid_t parent, const std::string& name);

@@ -155,6 +155,17 @@ def test_names_the_file_cannot_hold_are_refused(tmp_path):
         with pytest.raises(mcref.ConfigError, match=message):
             mcref.write_tables(str(tmp_path / "x.h5"), tables, config="# none", seed=1)
         assert os.listdir(tmp_path) == [], label
+    # Names with a NUL (cut short in the file), and notes under the layout's own attribute
+    # names (an HDF5 "disk full?" error, or a file that would not read back: storage).
+    noted = lambda attributes: mcref.Table("t", "tau_plus", [mcref.Axis.bins("theta_i", "rad", edges)], np.ones(2),
+                                           np.ones(2), batches=2, attributes=attributes)
+    for label, tables, message in [("a NUL", [table("a\0b")], "table name"),
+                                   ("batches", [noted({"batches": "3"})], r"attribute \"batches\""),
+                                   ("storage", [noted({"storage": "lean"})], r"attribute \"storage\""),
+                                   ("a NUL in a note", [noted({"k\0q": "v"})], "attribute")]:
+        with pytest.raises(mcref.ConfigError, match=message):
+            mcref.write_tables(str(tmp_path / "x.h5"), tables, config="# none", seed=1)
+        assert os.listdir(tmp_path) == [], label
     mcref.write_tables(str(tmp_path / "x.h5"), [table("t"), table("u", ("theta_i", "phi_i"))], config="# none", seed=1)
     assert mcref.read_tables(str(tmp_path / "x.h5")).names == ["t", "u"]
 
