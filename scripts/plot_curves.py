@@ -30,6 +30,7 @@ PICK = {"brdf_modes": {"theta_i": [7, 15]}, "pore_visibility": {"phi": [0, -1]},
 MAX_SERIES = 6
 MAX_COLUMNS = 3
 PANEL_HEIGHT = 4.1  # inches: comparison + residual + series key
+RESIDUAL_HEIGHT = 1.1  # inches: a second residual panel (exact and approximate models)
 
 
 @dataclass
@@ -174,12 +175,12 @@ def drop_zero_series(view, table):
     return gone
 
 
-def draw_comparison(ax, rax, table, view, styles, tag, ylabel=None):
-    """Simulation points and model lines on ax, residuals on rax. styles: model name ->
-    (colour, linestyle, marker-index). tag: gid prefix naming the panel."""
+def draw_comparison(ax, raxes, table, view, styles, tag, ylabel=None):
+    """Simulation points and model lines on ax, residuals on raxes (kind -> axes, one per
+    ps.residual_kinds(table.models), top to bottom). styles: model name -> (colour,
+    linestyle, marker-index). tag: gid prefix naming the panel."""
     n = len(view.series)
-    kind = ps.residual_kind(table.models)
-    scale_values, residuals = [], []
+    scale_values, residuals = [], {kind: [] for kind in raxes}
     cat = view.categorical is not None
     local = {m.name: j for j, m in enumerate(table.models)}
     for s, ser in enumerate(view.series):
@@ -202,8 +203,10 @@ def draw_comparison(ax, rax, table, view, styles, tag, ylabel=None):
                 continue
             colour, style, k = styles[m.name]
             scale_values.append(ym)
+            kind = ps.model_kind(m)
+            rax = raxes[kind]
             r, re = ps.residual(kind, y, e, ym, None if m.z is None else ser.take(m.z))
-            residuals.append(r)
+            residuals[kind].append(r)
             if cat:
                 dx = 0.1 * (local[m.name] + 1)
                 ax.plot(view.x + dx, ym, ls="none", marker=ps.MARKERS[(k + 1) % len(ps.MARKERS)], ms=5,
@@ -217,18 +220,21 @@ def draw_comparison(ax, rax, table, view, styles, tag, ylabel=None):
     scale_values = np.concatenate(scale_values) if scale_values else np.array([])
     if ps.wants_log(scale_values):
         ps.set_log_y(ax, scale_values)
-    ps.scale_residual_axis(rax, kind, np.concatenate(residuals) if residuals else np.array([]))
-    rax.set_ylabel(ps.RESIDUAL_LABEL[kind], fontsize=8)
+    for kind, rax in raxes.items():
+        ps.scale_residual_axis(rax, kind, np.concatenate(residuals[kind]) if residuals[kind] else np.array([]))
+    rax = list(raxes.values())[-1]
     rax.set_xlabel(view.xlabel)
+    every = [ax] + list(raxes.values())
     if cat:
-        for a in (ax, rax):
+        for a in every:
             a.set_xticks(view.x)
             a.set_xticklabels(view.categorical)
             a.set_xlim(view.x[0] - 0.4, view.x[-1] + 0.2 + 0.1 * len(table.models))
-    ax.tick_params(labelbottom=False)
+    for a in every[:-1]:
+        a.tick_params(labelbottom=False)
     unit = f" ({table.unit})" if table.unit not in ("", "1") else ""
     ax.set_ylabel(ylabel or greek(table.quantity) + unit)
-    for a in (ax, rax):
+    for a in every:
         a.grid(alpha=0.3)
     handles, labels = ax.get_legend_handles_labels()
     if any(labels) and (n > 1 or cat):  # the series key, under the residual panel
@@ -271,16 +277,18 @@ def case_figure(case):
     legend_rows = (len(names) + 2) // 3
     top_in = 0.75 + 0.19 * legend_rows + 0.35
     note_in = 0.45 if skipped else 0.15
-    height = top_in + rows * PANEL_HEIGHT + note_in
+    extra = max(len(ps.residual_kinds(t.models)) for t, _, _ in panels) - 1 if panels else 0
+    height = top_in + rows * (PANEL_HEIGHT + RESIDUAL_HEIGHT * extra) + note_in
     width = min(ps.FIG_WIDTH, 1.0 + 3.5 * cols)
     fig = plt.figure(figsize=(width, height))
     gs = fig.add_gridspec(rows, cols, left=0.8 / width, right=1 - 0.15 / width, top=1 - top_in / height,
                           bottom=(note_in + 0.45) / height, hspace=0.62, wspace=0.36)
     for p, (t, chlabel, view) in enumerate(panels):
-        sub = gs[p // cols, p % cols].subgridspec(2, 1, height_ratios=[2.3, 1.0], hspace=0.06)
+        kinds = ps.residual_kinds(t.models)
+        sub = gs[p // cols, p % cols].subgridspec(1 + len(kinds), 1, height_ratios=[2.3] + [1.0] * len(kinds), hspace=0.08)
         ax = fig.add_subplot(sub[0])
-        rax = fig.add_subplot(sub[1], sharex=ax)
-        draw_comparison(ax, rax, t, view, styles, f"{t.name}|{chlabel}")
+        raxes = {kind: fig.add_subplot(sub[1 + k], sharex=ax) for k, kind in enumerate(kinds)}
+        draw_comparison(ax, raxes, t, view, styles, f"{t.name}|{chlabel}")
         ax.set_title(t.name + (f" — {chlabel}" if chlabel else ""))
     fig.suptitle(case.name + (f"  ({case.figure})" if case.figure else ""), y=1 - 0.12 / height)
     model_legend(fig, styles, 1 - 0.35 / height)

@@ -67,12 +67,13 @@ def overlay_figure(label, cases):
         return None
     model_names = list(dict.fromkeys(m.name for _, t, _, _ in curves for m in t.models))
     style = {m: ps.STYLES[k % len(ps.STYLES)] for k, m in enumerate(model_names)}
-    kind = ps.residual_kind([m for _, t, _, _ in curves for m in t.models])
-    fig = plt.figure(figsize=(ps.FIG_WIDTH, 6.2))
-    gs = fig.add_gridspec(2, 1, height_ratios=[2.4, 1], hspace=0.07, left=0.08, right=0.64, top=0.9, bottom=0.1)
+    kinds = ps.residual_kinds([m for _, t, _, _ in curves for m in t.models])
+    fig = plt.figure(figsize=(ps.FIG_WIDTH, 6.2 + 1.2 * (len(kinds) - 1)))
+    gs = fig.add_gridspec(1 + len(kinds), 1, height_ratios=[2.4] + [1] * len(kinds), hspace=0.07, left=0.08, right=0.64,
+                          top=0.9, bottom=0.1)
     ax = fig.add_subplot(gs[0])
-    rax = fig.add_subplot(gs[1], sharex=ax)
-    scale, resid, case_handles = [], [], []
+    raxes = {kind: fig.add_subplot(gs[1 + k], sharex=ax) for k, kind in enumerate(kinds)}
+    scale, resid, case_handles = [], {kind: [] for kind in kinds}, []
     for j, (short, t, chlabel, view) in enumerate(curves):
         colour = ps.COLOURS[j % len(ps.COLOURS)]
         marker = ps.MARKERS[j % len(ps.MARKERS)]
@@ -87,9 +88,10 @@ def overlay_figure(label, cases):
             if np.all(np.isnan(ym)):
                 continue
             ax.plot(x, ym, color=colour, ls=style[m.name], lw=1.4, gid=f"model|{short}|{m.name}")
+            kind = ps.model_kind(m)
             r, re = ps.residual(kind, y, e, ym, None if m.z is None else ser.take(m.z))
-            resid.append(r)
-            rax.errorbar(x, r, re, color=colour, ls=style[m.name], lw=1.1, marker=".", ms=3, elinewidth=0.6)
+            resid[kind].append(r)
+            raxes[kind].errorbar(x, r, re, color=colour, ls=style[m.name], lw=1.1, marker=".", ms=3, elinewidth=0.6)
             scale.append(ym)
         detail = ", ".join(s for s in (ser.label, chlabel) if s)
         case_handles.append(Line2D([], [], color=colour, marker=marker, ls="none", ms=5,
@@ -97,17 +99,20 @@ def overlay_figure(label, cases):
     scale = np.concatenate(scale)
     if ps.wants_log(scale):
         ps.set_log_y(ax, scale)
-    ps.scale_residual_axis(rax, kind, np.concatenate(resid) if resid else np.array([]))
+    for kind, rax in raxes.items():
+        ps.scale_residual_axis(rax, kind, np.concatenate(resid[kind]) if resid[kind] else np.array([]))
     ref = curves[0][1]
     unit = f" ({ref.unit})" if ref.unit not in ("", "1") else ""
     ax.set_ylabel(greek(ref.quantity) + unit)
-    ax.tick_params(labelbottom=False)
-    rax.set_ylabel(ps.RESIDUAL_LABEL[kind], fontsize=8)
+    every = [ax] + list(raxes.values())
+    for a in every[:-1]:
+        a.tick_params(labelbottom=False)
+    rax = every[-1]
     rax.set_xlabel(curves[0][3].xlabel)
     if curves[0][3].categorical:
         rax.set_xticks(curves[0][3].x)
         rax.set_xticklabels(curves[0][3].categorical)
-    for a in (ax, rax):
+    for a in every:
         a.grid(alpha=0.3)
     leg = fig.legend(handles=case_handles, loc="upper left", bbox_to_anchor=(0.66, 0.9), frameon=False,
                      title="cases: simulation (points)", fontsize=8.5)

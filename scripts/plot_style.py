@@ -49,29 +49,44 @@ def residual_kind(models):
     return "z" if models and all(m.exact for m in models) else "rel"
 
 
-RESIDUAL_LABEL = {"z": "z = (sim − model) / σ", "rel": "model / sim − 1 (%)"}
+def residual_kinds(models):
+    """The residual panels of a curve: z for its exact models, the relative error for its
+    approximate ones (both when it has both)."""
+    kinds = [k for k, want in (("z", True), ("rel", False)) if any(m.exact == want for m in models)]
+    return kinds or ["z"]
+
+
+def model_kind(model):
+    return "z" if model.exact else "rel"
+
+
+RESIDUAL_LABEL = {"z": "z = (sim − model)\n/ σ", "rel": "model / sim − 1\n(%)"}
+SIGNAL_SIGMAS = 5  # the report's relative error is over cells with |sim| > 5 σ (validate/metrics.cpp)
 
 
 def residual(kind, sim, se, model, z=None):
     """Residual and its 1-sigma error bar. z: the report's z where given (results.json:
     Student's t of the batches mapped to a normal quantile, with the model's own noise),
-    else (sim - model) / σ. rel is left out where the simulation is not significantly
-    non-zero (|sim| <= 2 σ): the ratio would be noise."""
+    else (sim - model) / σ. rel is over the cells of the report's relative error, where
+    |sim| > 5 σ (elsewhere the ratio would be noise), so its largest |value| is the
+    report's max rel. error."""
     with np.errstate(divide="ignore", invalid="ignore"):
         if kind == "z":
             r = z if z is not None else np.where(se > 0, (sim - model) / se, np.nan)
             return r, None
-        ok = np.abs(sim) > 2 * se
+        ok = np.abs(sim) > SIGNAL_SIGMAS * se
         r = np.where(ok, 100 * (model / sim - 1), np.nan)
         e = np.where(ok, 100 * np.abs(model) * se / sim ** 2, np.nan)
         return r, e
 
 
 def scale_residual_axis(ax, kind, values):
-    """Reference lines; symlog when a few large residuals would flatten the small ones."""
+    """Reference lines and the axis label; symlog, said in the label, when a few large
+    residuals would flatten the small ones."""
     finite = np.abs(values[np.isfinite(values)]) if values.size else np.array([])
     big = finite.max() if finite.size else 0.0
     lin = 3 if kind == "z" else 5
+    label = RESIDUAL_LABEL[kind]
     if kind == "z":
         for y in (-2, 2):
             ax.axhline(y, color="0.6", lw=0.8, ls=":")
@@ -82,7 +97,9 @@ def scale_residual_axis(ax, kind, values):
         ax.set_yticks(ticks)
         ax.set_yticklabels([f"{t:g}" for t in ticks])
         ax.set_ylim(-top, top)
+        label += f"\nlog beyond ±{lin}"
     ax.axhline(0, color="k", lw=0.8)
+    ax.set_ylabel(label, fontsize=8)
 
 
 def wants_log(values):

@@ -2,8 +2,10 @@
 """Plots of a validation run, under OUTDIR/plots/:
 
   <case>.png           the 1-D comparisons: simulation (points, 1-sigma bars), models
-                       (lines), and under each a residual panel: for exact models the
-                       report's z per cell (results.json), else model/sim - 1
+                       (lines), and under each the residuals: for exact models the
+                       report's z per cell (results.json), for approximate ones
+                       model/sim - 1 over the report's cells (|sim| > 5 sigma); a curve
+                       with both kinds of model gets both panels
   <case>_table.png     BRDF/BTDF cases: the whole table as an image (rows: incoming
                        directions, columns: outgoing cells, upper | lower hemisphere)
   <case>_lobes.png     BRDF/BTDF cases: polar lobes at a few theta_i: simulation, model,

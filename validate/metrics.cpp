@@ -64,8 +64,10 @@ Comparison compare(const std::vector<double>& sim, const std::vector<double>& se
       c.max_abs_z = std::fabs(z);
       c.worst_cell = i;
     }
+    // The model's error relative to the reference, over cells where the
+    // simulation is significant (its own relative noise below 20 %).
     if (std::fabs(sim[i]) > 5 * se[i]) {
-      const double rel = std::fabs(sim[i] - model[i]) / std::fmax(std::fabs(model[i]), 1e-300);
+      const double rel = std::fabs(model[i] - sim[i]) / std::fabs(sim[i]);
       c.max_rel_error = std::fmax(c.max_rel_error, rel);
       rel2 += rel * rel;
       ++c.signal_cells;

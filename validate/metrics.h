@@ -15,7 +15,7 @@ struct Comparison {
   std::size_t channels = 0;      // channels with compared cells
   double max_abs_z = 0;
   std::size_t worst_cell = 0;    // flat index of max |z|
-  double max_rel_error = 0;      // max |sim - model| / |model| over cells with signal
+  double max_rel_error = 0;      // max |model - sim| / |sim| over cells with |sim| > 5 se
   double rms_rel_error = 0;
   std::size_t signal_cells = 0;  // cells with |sim| > 5 stderr
   std::size_t exact_cells = 0;   // zero-variance cells where sim equals the model (to 1e-6 relative)

@@ -36,6 +36,7 @@ Axis Axis::uniform_bins(std::string name, std::string unit, double lo, double hi
 }
 
 Axis Axis::points(std::string name, std::string unit, std::vector<double> values) {
+  if (values.empty()) throw std::invalid_argument("axis " + name + " needs at least 1 point");
   for (std::size_t i = 0; i < values.size(); ++i)
     if (!std::isfinite(values[i]))
       throw std::invalid_argument("axis " + name + ": point " + std::to_string(i) + " is not finite");

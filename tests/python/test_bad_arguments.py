@@ -131,6 +131,12 @@ def test_evaluate_model_refuses_a_table_laid_out_otherwise():
             mcref.evaluate_model("tau_plus_eq22", far, CFG)
 
 
+def test_an_axis_needs_a_point():
+    # Before, a table over it had no cell, and was written and read back.
+    with pytest.raises(ValueError, match="axis theta_i needs at least 1 point"):
+        mcref.Axis.points("theta_i", "rad", [])
+
+
 @pytest.mark.parametrize("edges", [[0, float("nan"), 2], [2, 1, 0], [0, 1, 1], [0, float("inf")]])
 def test_bin_edges_must_be_finite_and_increasing(edges):
     # Before, such an axis was written, and the file then called damaged by read_tables and `mcref info`.
@@ -269,6 +275,11 @@ def test_grain_field_parameters_outside_the_models_domain_are_refused(call, key)
     ("micrograin.lrpb23(0.5, 1.0, 0.3, 0.0, 2.0, 3.1, mcref.micrograin.MicroSurface(), "
      "mcref.micrograin.MicroSurface())", "theta_o"),  # -0.0955
     ("micrograin.ggx_ndf(-0.3, 0.2)", "alpha"),  # 1.81
+    ("micrograin.ndf_eq17(0.5, 1.0, 2.0)", "theta_m"),  # a normal below the macro surface
+    ("micrograin.ggx_ndf(0.3, -0.2)", "theta_m"),
+    ("micrograin.ndf_anisotropic(0.5, 1.0, 2.0, 0.3, float('nan'))", "phi_m"),
+    ("micrograin.vndf_eq13(0.5, 1.0, 1.0, 0.3, 0.0, 1.7, 0.0)", "theta_m"),
+    ("micrograin.tau_plus_anisotropic(0.5, 1.0, 2.0, 0.3, float('inf'))", "phi"),
     ("micrograin.g_dist(0.5, 1.0, 1.0, 0.3, 0.0, 1.5)", "h"),  # 1
     ("micrograin.projected_cap_area(0.3, -2.0)", "h"),  # -9.42
     ("sggx.hg_phase(1.5, 0.3, 0.0, 0.4, 0.0)", "g"),  # -0.0064

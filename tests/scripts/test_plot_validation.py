@@ -18,6 +18,8 @@ import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 import plot_curves  # noqa: E402
 import plot_figures  # noqa: E402
+import plot_style  # noqa: E402
+import matplotlib.pyplot  # noqa: E402
 import validation_data  # noqa: E402
 
 N_NDF_MODELS = 9  # more than the six line styles the old plots cycled through
@@ -195,3 +197,26 @@ def test_plane_of_incidence_runs_left_to_right_for_a_btdf():
         for xi, yi in zip(view.x, y):
             k = int(np.argmin(np.abs(angles - abs(xi))))
             assert yi == value[0, 0, k, 0 if xi < 0 else 2], (quantity, xi, yi)
+
+
+def test_exact_and_approximate_models_get_their_own_residual_panels(run):
+    # syn_b's tau_plus has an exact and an approximate model: z for the one, % for the other.
+    fig = case_figure(run, "syn_b")
+    labels = [ax.get_ylabel() for ax in fig.axes]
+    assert sum(label.startswith(plot_style.RESIDUAL_LABEL["z"]) for label in labels) == 1, labels
+    assert sum(label.startswith(plot_style.RESIDUAL_LABEL["rel"]) for label in labels) == 1, labels
+
+
+def test_relative_residual_is_the_reports_relative_error():
+    # Over the cells where |sim| > 5 sigma only, as validate/metrics.cpp's max_rel_error.
+    sim, se, model = np.array([2.0, 2.0, 0.04]), np.array([0.01, 0.01, 0.01]), np.array([1.0, 4.0, 1.0])
+    r, _ = plot_style.residual("rel", sim, se, model)
+    assert r[0] == pytest.approx(-50) and r[1] == pytest.approx(100) and np.isnan(r[2])
+
+
+def test_a_logarithmic_residual_axis_says_so():
+    fig, (lin, log) = matplotlib.pyplot.subplots(2)
+    plot_style.scale_residual_axis(lin, "rel", np.array([-4.0, 3.0]))
+    plot_style.scale_residual_axis(log, "rel", np.array([-4.0, 900.0]))
+    assert "log" not in lin.get_ylabel() and lin.get_yscale() == "linear"
+    assert "log beyond ±5" in log.get_ylabel() and log.get_yscale() == "symlog"

@@ -72,8 +72,18 @@ TEST(Metrics, ToleranceNeedsSignal) {
   EXPECT_EQ(judge(compare(sim, se, model, 32), false, 1e-3, 0.05).status, "FAIL");
   // With signal, a model of 0 counts as 100 % off.
   const Comparison c = compare({1.0}, {0.01}, {0.0}, 32);
-  EXPECT_GE(c.max_rel_error, 1.0);
+  EXPECT_DOUBLE_EQ(c.max_rel_error, 1.0);
   EXPECT_EQ(judge(c, false, 1e-3, 0.05).status, "FAIL");
+}
+
+// The relative error is the model's, against the simulation (the reference):
+// a model at half the simulation is 50 % off, one at twice it 100 % off; the
+// cell below 5 stderr is left out. The plots' residual uses the same cells.
+TEST(Metrics, RelativeErrorIsAgainstTheSimulation) {
+  const Comparison c = compare({2.0, 2.0, 0.04}, {0.01, 0.01, 0.01}, {1.0, 4.0, 1.0}, 32);
+  EXPECT_EQ(c.signal_cells, 2u);
+  EXPECT_DOUBLE_EQ(c.max_rel_error, 1.0);
+  EXPECT_DOUBLE_EQ(c.rms_rel_error, std::sqrt((0.25 + 1.0) / 2));
 }
 
 // The t -> z map: with 1 batch of freedom more the z shrinks toward the normal.

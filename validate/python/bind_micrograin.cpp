@@ -30,6 +30,12 @@ double height_in(double h) { return argument("h", h, kUnitInterval); }
 // A direction's polar angle from the macro normal, in [0, pi/2] (beyond it the
 // formulas give numbers outside their domain: tau_plus_eq22 at 2 rad was -0.63).
 double theta_in(const char* name, double theta) { return argument(name, theta, Range{0, kPi / 2, false, false}); }
+// An azimuth: any finite angle.
+double phi_in(const char* name, double phi) { return argument(name, phi, Range{-INFINITY, INFINITY, true, true}); }
+// An upper-hemisphere direction from its checked angles.
+Vec3 direction_in(const char* theta_name, double theta, const char* phi_name, double phi) {
+  return spherical_direction(theta_in(theta_name, theta), phi_in(phi_name, phi));
+}
 
 mg::LambdaMethod lambda_method(const std::string& s) {
   if (s == "series4") return mg::LambdaMethod::Series4;
@@ -72,21 +78,21 @@ void bind_micrograin(py::module_& root) {
 
   // NDF, LRPB23 Sec. 4.2
   m.def("ndf_eq17", py::vectorize([](double tau0, double beta, double theta_m) {
-          return mg::ndf(tau0_in(tau0), beta_in(beta), theta_m);
+          return mg::ndf(tau0_in(tau0), beta_in(beta), theta_in("theta_m", theta_m));
         }),
         py::arg("tau0"), py::arg("beta"), py::arg("theta_m"),
         "LRPB23 Eq. 17: D(m) = -ln(1 - tau0) (1 - tau0)^(tan^2/(beta^2 + tan^2)) / tau0 * D_GGX(m; beta),\n"
         "in 1/sr, normalised: integral of D cos theta_m over the hemisphere = 1.");
   m.def("ndf_eq16", py::vectorize([](double tau0, double beta, double theta_m) {
-          return mg::ndf_eq16(tau0_in(tau0), beta_in(beta), theta_m);
+          return mg::ndf_eq16(tau0_in(tau0), beta_in(beta), theta_in("theta_m", theta_m));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta_m"),
         "LRPB23 Eq. 16 (same function as Eq. 17, written with pi rho r_s^2 = -ln(1 - tau0)).");
   m.def("ndf_anisotropic", py::vectorize([](double tau0, double bx, double by, double theta_m, double phi_m) {
-          return mg::ndf(grain_field(tau0, bx, by), spherical_direction(theta_m, phi_m));
+          return mg::ndf(grain_field(tau0, bx, by), direction_in("theta_m", theta_m, "phi_m", phi_m));
         }), py::arg("tau0"), py::arg("beta_x"), py::arg("beta_y"), py::arg("theta_m"), py::arg("phi_m"),
         "vNDF Eq. 7-8: anisotropic D(m) = det(M) / |M^T m|^4 D1(m'); equals ndf_eq17 when beta_x == beta_y.");
   m.def("ndf_ggx_alpha_tilde", py::vectorize([](double tau0, double beta, double theta_m) {
-          return mg::ggx_ndf(mg::equivalent_roughness(tau0_in(tau0), beta_in(beta)), theta_m);
+          return mg::ggx_ndf(mg::equivalent_roughness(tau0_in(tau0), beta_in(beta)), theta_in("theta_m", theta_m));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta_m"),
         "GGX NDF at the equivalent roughness alpha~ of LRPB23 Eq. 18 (suite model ndf_ggx_alpha_tilde).");
   m.def("equivalent_roughness", py::vectorize([](double tau0, double beta) {
@@ -94,10 +100,10 @@ void bind_micrograin(py::module_& root) {
         }), py::arg("tau0"), py::arg("beta"),
         "LRPB23 Eq. 18: alpha~ = beta sqrt(-tau0 / ln(1 - tau0)).");
   m.def("ndf_cdf_theta", py::vectorize([](double tau0, double beta, double theta_m) {
-          return mg::ndf_cdf_theta(tau0_in(tau0), beta_in(beta), theta_m);
+          return mg::ndf_cdf_theta(tau0_in(tau0), beta_in(beta), theta_in("theta_m", theta_m));
         }), py::arg("tau0"), py::arg("beta"), py::arg("theta_m"),
         "LRPB23 Eq. 19: CDF of theta_m under D(m) cos theta_m.");
-  m.def("ggx_ndf", py::vectorize([](double alpha, double theta_m) { return mg::ggx_ndf(argument("alpha", alpha, kPositive), theta_m); }),
+  m.def("ggx_ndf", py::vectorize([](double alpha, double theta_m) { return mg::ggx_ndf(argument("alpha", alpha, kPositive), theta_in("theta_m", theta_m)); }),
         py::arg("alpha"), py::arg("theta_m"), "GGX NDF alpha^2 / (pi (alpha^2 cos^2 + sin^2)^2), 1/sr.");
 
   // Visible filling factor, LRPB23 Sec. 5.1
@@ -113,7 +119,7 @@ void bind_micrograin(py::module_& root) {
         "LRPB23 Eq. 22 (suite model tau_plus_eq22): visible filling factor of the half-ellipsoids,\n"
         "tau+ = 1 - sqrt((1 - tau_beta)(1 - tau0)); dimensionless, tau+(0) = tau0.");
   m.def("tau_plus_anisotropic", py::vectorize([](double tau0, double bx, double by, double theta, double phi) {
-          return mg::tau_plus(grain_field(tau0, bx, by), spherical_direction(theta_in("theta", theta), phi));
+          return mg::tau_plus(grain_field(tau0, bx, by), direction_in("theta", theta, "phi", phi));
         }), py::arg("tau0"), py::arg("beta_x"), py::arg("beta_y"), py::arg("theta"), py::arg("phi"),
         "LRPB23 Eq. 22 in the unit space (any beta_x, beta_y).");
   m.def("layer_weight_eq24", py::vectorize([](double tau0, double beta, double theta_i, double theta_o) {
@@ -124,12 +130,12 @@ void bind_micrograin(py::module_& root) {
 
   // Height-correlated masking (vNDF Eq. 3-5, 9-10)
   m.def("tau_height_sigma", py::vectorize([](double tau0, double bx, double by, double theta_i, double phi_i, double h) {
-          return mg::filling_factor_at_height(grain_field(tau0, bx, by), spherical_direction(theta_in("theta_i", theta_i), phi_i), height_in(h));
+          return mg::filling_factor_at_height(grain_field(tau0, bx, by), direction_in("theta_i", theta_i, "phi_i", phi_i), height_in(h));
         }), py::arg("tau0"), py::arg("beta_x"), py::arg("beta_y"), py::arg("theta_i"), py::arg("phi_i"), py::arg("h"),
         "vNDF Eq. 4/10 (suite model tau_height_sigma): tau(i, h) = 1 - exp(-rho' sigma(i', h)),\n"
         "rho' = -ln(1 - tau0)/pi, h the unit-space height in [0, 1]; tau(i, 0) = tau+(i).");
   m.def("g_dist", py::vectorize([](double tau0, double bx, double by, double theta_i, double phi_i, double h) {
-          return mg::distant_masking(grain_field(tau0, bx, by), spherical_direction(theta_in("theta_i", theta_i), phi_i), height_in(h));
+          return mg::distant_masking(grain_field(tau0, bx, by), direction_in("theta_i", theta_i, "phi_i", phi_i), height_in(h));
         }), py::arg("tau0"), py::arg("beta_x"), py::arg("beta_y"), py::arg("theta_i"), py::arg("phi_i"), py::arg("h"),
         "vNDF Eq. 3/9: height-correlated masking G_dist(i, h) = exp(-rho' sigma_s(i', h)).");
   m.def("projected_cap_area", py::vectorize([](double theta_i, double h) { return mg::projected_cap_area(theta_in("theta_i", theta_i), height_in(h)); }),
@@ -167,7 +173,7 @@ void bind_micrograin(py::module_& root) {
   // Visible NDF (vNDF Eq. 6, 11-13)
   m.def("vndf_eq13", py::vectorize([](double tau0, double bx, double by, double theta_i, double phi_i, double theta_m,
                                       double phi_m) {
-          return mg::visible_ndf(grain_field(tau0, bx, by), spherical_direction(theta_in("theta_i", theta_i), phi_i), spherical_direction(theta_m, phi_m));
+          return mg::visible_ndf(grain_field(tau0, bx, by), direction_in("theta_i", theta_i, "phi_i", phi_i), direction_in("theta_m", theta_m, "phi_m", phi_m));
         }), py::arg("tau0"), py::arg("beta_x"), py::arg("beta_y"), py::arg("theta_i"), py::arg("phi_i"),
         py::arg("theta_m"), py::arg("phi_m"),
         "vNDF Eq. 6/11-13 (suite model vndf_eq13): D_v(i, m) = tau0 <i.m>+ D(m) G_dist(i, h(m)) /\n"
@@ -203,7 +209,7 @@ void bind_micrograin(py::module_& root) {
             throw ConfigError("<python>", "part", "\"" + part + "\" must be one of total, grain, base");
           auto f = py::vectorize([&](double tau0, double beta, double ti, double pi_, double to, double po) {
             const mg::GrainField f = iso(tau0, beta);
-            const Vec3 i = spherical_direction(theta_in("theta_i", ti), pi_), o = spherical_direction(theta_in("theta_o", to), po);
+            const Vec3 i = direction_in("theta_i", ti, "phi_i", pi_), o = direction_in("theta_o", to, "phi_o", po);
             double v = 0;
             if (part != "base") v += mg::lrpb23_grain_part(f, grain, i, o, l);
             if (part != "grain") v += mg::lrpb23_base_part(f, base, i, o);
@@ -219,8 +225,8 @@ void bind_micrograin(py::module_& root) {
   m.def("gdist_grain", [](py::object tau0, py::object bx, py::object by, py::object ti, py::object pi_, py::object to,
                           py::object po, const mg::MicroSurface& grain) {
           return vectorized([&](double tau0, double bx, double by, double ti, double pi_, double to, double po) {
-            return mg::gdist_grain_single_scattering(grain_field(tau0, bx, by), grain, spherical_direction(theta_in("theta_i", ti), pi_),
-                                                     spherical_direction(theta_in("theta_o", to), po));
+            return mg::gdist_grain_single_scattering(grain_field(tau0, bx, by), grain, direction_in("theta_i", ti, "phi_i", pi_),
+                                                     direction_in("theta_o", to, "phi_o", po));
           }, tau0, bx, by, ti, pi_, to, po);
         }, py::arg("tau0"), py::arg("beta_x"), py::arg("beta_y"), py::arg("theta_i"), py::arg("phi_i"),
         py::arg("theta_o"), py::arg("phi_o"), py::arg("grain"),
