@@ -179,10 +179,17 @@ class Stage:
             if before is not None and os.stat(out).st_mtime_ns == before:  # mcref found it up to date
                 self.times[f"{name} dataset"]["cached"] = True
         except StageError as e:
-            if "exists and" not in str(e):
+            # Only mcref's own two verdicts on this stage's files: OUTPUT of another dataset
+            # (or incomplete, unreadable), or parts of another dataset (its TOML changed after
+            # an interrupted run). Anything else (a file where the parts directory goes) is raised.
+            stale_output = f"{out}: exists and " in str(e)
+            stale_parts = f"{out}.parts: holds entries of another dataset" in str(e)
+            if not (stale_output or stale_parts):
                 raise
-            self.log(f"{name}: {out} is stale ({str(e).split(': ', 1)[1]}); simulating again")
-            os.remove(out)
+            self.log(f"{name}: {out if stale_output else out + '.parts'} is stale ({str(e).split(': ', 1)[1]}); "
+                     "simulating again")
+            if stale_output:
+                os.remove(out)
             shutil.rmtree(out + ".parts", ignore_errors=True)
             self.run(f"{name} dataset", cmd)
         return out

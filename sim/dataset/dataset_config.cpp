@@ -1,5 +1,6 @@
 #include "sim/dataset/dataset_config.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -221,13 +222,26 @@ DatasetConfig parse_dataset(const std::string& text, const std::string& file) {
   const bool has_entries = dr.has("entries");
   c.per_point = dr.integer("entries", 1, std::int64_t(1) << 40, 1);
   c.tables = dr.strings("tables");
+  for (std::size_t i = 0; i < c.tables.size(); ++i)
+    if (std::find(c.tables.begin(), c.tables.begin() + i, c.tables[i]) != c.tables.begin() + i)
+      throw ConfigError(file, "dataset.tables", "names \"" + c.tables[i] + "\" twice");
   c.compression = static_cast<int>(dr.integer("compression", 0, 9, 0));
   dr.finish();
   const auto params = r.tables("parameter");
   std::set<std::string> keys;
   bool sampled = false;
+  constexpr std::int64_t kMaxEntries = std::int64_t(1) << 40;
+  std::int64_t grid = 1;  // checked at each factor: the product of a few large grids wraps
   for (std::size_t i = 0; i < params.size(); ++i) {
     c.parameters.push_back(read_parameter(*params[i], c, i));
+    if (!c.parameters.back().sampled()) {
+      const auto size = static_cast<std::int64_t>(c.parameters.back().values.size());
+      if (size > kMaxEntries / grid)
+        throw ConfigError(file, "parameter." + std::to_string(i) + ".values",
+                          "makes the grid hold more than 2^40 points (" + std::to_string(grid) + " before it, times " +
+                              std::to_string(size) + ")");
+      grid *= size;
+    }
     if (!keys.insert(c.parameters.back().key).second)
       throw ConfigError(file, "parameter." + std::to_string(i) + ".key",
                         "\"" + c.parameters.back().key + "\" is varied twice; give each key one [[parameter]]");
@@ -238,7 +252,7 @@ DatasetConfig parse_dataset(const std::string& text, const std::string& file) {
   if (!sampled && has_entries && c.per_point != 1)
     throw ConfigError(file, "dataset.entries", "applies to sampled parameters (range, choices, direction); "
                                                "a pure grid has one entry per grid point");
-  if (c.grid_points() > (std::int64_t(1) << 40) / c.per_point)
+  if (c.grid_points() > kMaxEntries / c.per_point)
     throw ConfigError(file, "dataset.entries", "the dataset would hold more than 2^40 entries");
   r.finish();
   return c;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <stdexcept>
 
@@ -47,15 +48,20 @@ std::vector<Table> select_tables(const DatasetConfig& c, std::vector<Table> tabl
 
 // A finished part of this dataset holding `index`, or false if absent or
 // damaged (then it is recomputed). A part of another dataset is an error, and
-// so is anything there but a file (a FIFO would block the read forever).
+// so is anything there but a file (a FIFO would block the read forever), a
+// file this process cannot read (a collaborator's part, kept) and one of
+// another format version (another mcref's).
 bool usable_part(const std::string& path, const DatasetHeader& expect, std::int64_t index, const std::string& dir) {
   if (!fs::exists(path)) return false;
   if (!fs::is_regular_file(path))
     throw ConfigError(path, "", "is not a regular file, and a part of the dataset must be one; remove it");
+  if (!std::ifstream(path, std::ios::binary))
+    throw ConfigError(path, "", "cannot be read (permissions?): a part of the dataset is neither reused nor replaced unread");
   std::unique_ptr<DatasetReader> r;
   try {
     r = std::make_unique<DatasetReader>(path);
   } catch (const ConfigError& e) {
+    if (std::string(e.what()).find("key 'format_version'") != std::string::npos) throw;
     std::fprintf(stderr, "mcref dataset: warning: recomputing a damaged part (%s)\n", e.what());
     fs::remove(path);
     return false;
@@ -68,6 +74,18 @@ bool usable_part(const std::string& path, const DatasetHeader& expect, std::int6
     return false;
   }
   return true;
+}
+
+// Removes this shard's parts once OUTPUT holds them, the temporary files of
+// interrupted part writes, and the directory if that leaves it empty.
+void remove_parts(const std::string& dir, const std::vector<std::int64_t>& indices) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return;
+  for (std::int64_t i : indices) fs::remove(part_path(dir, i), ec);
+  for (const auto& f : fs::directory_iterator(dir, ec))
+    if (f.path().filename().string().rfind("entry-", 0) == 0 && f.path().filename().string().find(".h5.tmp.") != std::string::npos)
+      fs::remove(f.path(), ec);
+  fs::remove(dir, ec);  // only if empty: anything else stays
 }
 
 }  // namespace
@@ -119,6 +137,13 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
     }
     if (!why.empty()) throw ConfigError(o.output, "", "exists and " + why + "; remove it or choose another -o");
     up_to_date = "yes";
+    // Parts left by a run stopped after OUTPUT was committed (while it removed them).
+    if (fs::is_directory(o.output + ".parts")) {
+      const DirectoryLock lock(o.output + ".parts", o.output, "-o");
+      std::vector<std::int64_t> indices;
+      for (std::int64_t k = 0; k < s.entries; ++k) indices.push_back(index(k));
+      remove_parts(o.output + ".parts", indices);
+    }
   });
   ranks.broadcast(up_to_date);
   if (!up_to_date.empty()) {
@@ -196,14 +221,9 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
   s.seconds = progress.elapsed_seconds();
   if (!assembler) return s;
   assembler->commit();
-  std::error_code ec;
-  for (std::int64_t k = 0; k < s.entries; ++k) fs::remove(part_path(dir, index(k)), ec);
-  // Temporary files of interrupted part writes; anything else stays, and so does the directory.
-  if (fs::is_directory(dir, ec))
-    for (const auto& f : fs::directory_iterator(dir, ec))
-      if (f.path().filename().string().rfind("entry-", 0) == 0 && f.path().filename().string().find(".h5.tmp.") != std::string::npos)
-        fs::remove(f.path(), ec);
-  fs::remove(dir, ec);
+  std::vector<std::int64_t> indices;
+  for (std::int64_t k = 0; k < s.entries; ++k) indices.push_back(index(k));
+  remove_parts(dir, indices);
   s.complete = true;
   return s;
 }
@@ -250,7 +270,8 @@ std::int64_t merge_datasets(const std::vector<std::string>& inputs, const std::s
   }
   DatasetHeader h = first;
   h.shard = "all";
-  h.git_commit = mcref_git_commit();  // of the build that writes the file, as after a resume: shards agree on the rest
+  h.mcref_version = mcref_version();  // of the build that writes the file, as after a resume: shards agree on the rest
+  h.git_commit = mcref_git_commit();
   h.lean = lean;
   h.sums = false;  // (parts given as shards hold sums only; the result is full or lean)
   Progress progress("merge", static_cast<double>(n), quiet);

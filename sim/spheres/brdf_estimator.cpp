@@ -49,6 +49,7 @@ std::vector<Table> make_sphere_brdf_tables(const Measure& m, const Experiment& e
   }
   for (Table& x : t) {
     x.attributes["placement"] = placement_name(p.placement);
+    if (p.placement == SpherePlacement::volumetric) continue;  // a continuum has no volume fraction
     std::snprintf(buf, sizeof buf, "%.6g", p.volume_fraction);
     x.attributes["volume_fraction"] = buf;
   }

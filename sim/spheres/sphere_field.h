@@ -5,7 +5,8 @@
 //
 // Precision: the slab is cut into depth layers of `layer_height` radii, each
 // its own Embree scene in local coordinates (origin at the layer's mid-depth),
-// so float coordinates stay below ~layer_height even in slabs 10^4 radii deep.
+// so float z stays below ~layer_height even in slabs 10^4 radii deep; x, y
+// stay below the tile (at most 1000 radii, spheres_config.cpp).
 // A sphere that crosses a layer boundary is in both layers. Spheres near a
 // tile side have ghost copies across it.
 #include <embree3/rtcore.h>

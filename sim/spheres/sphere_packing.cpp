@@ -6,6 +6,7 @@
 #include <string>
 
 #include "models/core/rng.h"
+#include "models/lambert_sphere/decay_rate.h"
 
 namespace mcref {
 
@@ -46,8 +47,7 @@ double SpherePacking::expected_count() const {
 
 double diffusion_depth_mfp(double c, double threshold) {
   if (c >= 1.0) return 4.0 / (3.0 * kOneMinusG * threshold);  // conservative: T ~ 4 / (3 (1-g) D)
-  const double L = 1.0 / std::sqrt(3.0 * (1.0 - c) * kOneMinusG);
-  return std::max(L * std::log(2.0 / threshold) + 2.0, std::log(2.0 / threshold));
+  return std::log(kTransmissionPrefactor / threshold) / lambert_sphere::decay_rate(c);
 }
 
 std::vector<Vec3> place_poisson(const SpherePacking& p, Rng& rng) {
@@ -60,13 +60,17 @@ std::vector<Vec3> place_poisson(const SpherePacking& p, Rng& rng) {
 }
 
 std::vector<Vec3> place_rsa(const SpherePacking& p, Rng& rng) {
-  const double depth = p.depth(), side = p.tile;
-  const std::size_t target = static_cast<std::size_t>(std::llround(p.volume_fraction * side * side * depth / kSphereVolume));
+  // RSA over-fills a free boundary (a centre near it has half its exclusion
+  // neighbourhood empty): twice the bulk density within half a radius of the
+  // face. So the packing is periodic in z too, over kRsaPadding more than the
+  // depth on both sides, and cut to [-depth, 0]: a bulk packing cut by planes.
+  const double depth = p.depth(), side = p.tile, made = depth + 2 * kRsaPadding;
+  const std::size_t target = static_cast<std::size_t>(std::llround(p.volume_fraction * side * side * made / kSphereVolume));
   // Grid of cells at least one diameter wide: a new sphere can only overlap
   // spheres whose centres lie in the 27 cells around its own.
   const int nx = std::max(1, static_cast<int>(side / 2.0));
-  const int nz = std::max(1, static_cast<int>(depth / 2.0));
-  const double cx = side / nx, cz = depth / nz;
+  const int nz = std::max(1, static_cast<int>(made / 2.0));
+  const double cx = side / nx, cz = made / nz;
   std::vector<std::vector<std::uint32_t>> cells(static_cast<std::size_t>(nx) * nx * nz);
   auto cell_index = [&](int ix, int iy, int iz) { return (static_cast<std::size_t>(iz) * nx + iy) * nx + ix; };
   std::vector<Vec3> c;
@@ -76,16 +80,15 @@ std::vector<Vec3> place_rsa(const SpherePacking& p, Rng& rng) {
   while (c.size() < target) {
     if (++attempts > budget)
       throw std::runtime_error("RSA placement stalled at volume fraction " +
-                               std::to_string(c.size() * kSphereVolume / (side * side * depth)) + " of " +
+                               std::to_string(c.size() * kSphereVolume / (side * side * made)) + " of " +
                                std::to_string(p.volume_fraction) + " (near jamming); lower volume_fraction");
-    const Vec3 x{rng.uniform() * side, rng.uniform() * side, -rng.uniform() * depth};
+    const Vec3 x{rng.uniform() * side, rng.uniform() * side, kRsaPadding - rng.uniform() * made};
     const int ix = std::min(nx - 1, static_cast<int>(x.x / cx));
     const int iy = std::min(nx - 1, static_cast<int>(x.y / cx));
-    const int iz = std::min(nz - 1, static_cast<int>(-x.z / cz));
+    const int iz = std::min(nz - 1, static_cast<int>((kRsaPadding - x.z) / cz));
     bool free = true;
     for (int dz = -1; dz <= 1 && free; ++dz) {
-      const int jz = iz + dz;
-      if (jz < 0 || jz >= nz) continue;
+      const int jz = (iz + dz + nz) % nz;
       for (int dy = -1; dy <= 1 && free; ++dy)
         for (int dx = -1; dx <= 1 && free; ++dx) {
           const int jx = (ix + dx + nx) % nx, jy = (iy + dy + nx) % nx;
@@ -93,7 +96,7 @@ std::vector<Vec3> place_rsa(const SpherePacking& p, Rng& rng) {
             double ddx = x.x - c[k].x, ddy = x.y - c[k].y;
             ddx -= side * std::round(ddx / side);
             ddy -= side * std::round(ddy / side);
-            const double ddz = x.z - c[k].z;
+            const double ddz = x.z - c[k].z - made * std::round((x.z - c[k].z) / made);
             if (ddx * ddx + ddy * ddy + ddz * ddz < 4.0) {
               free = false;
               break;
@@ -105,6 +108,7 @@ std::vector<Vec3> place_rsa(const SpherePacking& p, Rng& rng) {
     cells[cell_index(ix, iy, iz)].push_back(static_cast<std::uint32_t>(c.size()));
     c.push_back(x);
   }
+  c.erase(std::remove_if(c.begin(), c.end(), [&](const Vec3& x) { return x.z > 0 || x.z < -depth; }), c.end());
   shift_top_to_zero(c);
   return c;
 }

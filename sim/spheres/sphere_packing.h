@@ -54,11 +54,13 @@ struct SpherePacking {
 
 // The depth (mean free paths) at which a slab of albedo c with the
 // Lambert-sphere phase function (g = -4/9) transmits less than `threshold`:
-// the diffusion estimate L ln(2 / threshold) + 2 with diffusion length
-// L = 1 / sqrt(3 (1 - c)(1 - g)) (~ 0.92 / threshold at c = 1), but at least
-// ln(2 / threshold), where the unscattered light at normal incidence,
-// exp(-depth), is threshold / 2: at low albedo it dominates, and diffusion
-// ignores it.
+// T ~ A exp(-s0 depth), s0 the asymptotic decay rate of the diffuse radiance
+// (models/lambert_sphere/decay_rate.h; 1 at low albedo, where the unscattered
+// exp(-depth) dominates), A <= kTransmissionPrefactor (measured at normal
+// incidence: 1.6-1.8 at c = 0.6-0.64, tests/sim/spheres). At c = 1: 4 / (3 (1 - g) threshold).
+// (Diffusion's 1 / sqrt(3 (1 - c)(1 - g)) decay length with a prefactor 2 left
+// 1.27 times the threshold at c = 0.64.)
+inline constexpr double kTransmissionPrefactor = 4;
 double diffusion_depth_mfp(double c, double threshold);
 
 // Free flights longer than this many tile periods make the walk wrap the
@@ -68,8 +70,11 @@ inline constexpr double kMaxTilesPerFreeFlight = 100;
 // One realization of the centres (radius units, r = 1), x, y in [0, tile),
 // z in [-depth, 0], shifted so that the highest centre is at z = 0.
 std::vector<Vec3> place_poisson(const SpherePacking& p, Rng& rng);
-// RSA with a uniform grid; throws std::runtime_error if the attempt budget is
+// RSA with a uniform grid, periodic in x, y and z (z over kRsaPadding radii more
+// than the depth on both sides) and cut to [-depth, 0]: no denser layer at the
+// faces; the count kept varies. Throws std::runtime_error if the attempt budget is
 // exhausted before the target count (which can only happen near jamming).
+inline constexpr double kRsaPadding = 8;  // radii: 4 diameters, past the RSA pair correlation
 std::vector<Vec3> place_rsa(const SpherePacking& p, Rng& rng);
 std::vector<Vec3> place_spheres(const SpherePacking& p, Rng& rng);
 

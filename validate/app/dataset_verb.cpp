@@ -55,10 +55,16 @@ int dataset(const std::vector<std::string>& raw, const std::string& command_line
       opt.stop_after = parse_integer(flag, v, 0, 1LL << 40);
       continue;
     }
+    // Errors quote the whole K/N as given (3/2, 1/2/3, 0/0).
     const auto slash = v.find('/');
-    if (slash == std::string::npos) throw ConfigError("command line", flag, "= " + v + " must be K/N with 0 <= K < N");
-    opt.shards = static_cast<int>(parse_integer(flag, v.substr(slash + 1), 1, 1000000));
-    opt.shard = static_cast<int>(parse_integer(flag, v.substr(0, slash), 0, opt.shards - 1));
+    const auto bad = [&](const std::string& why) { return ConfigError("command line", flag, "= " + v + " " + why); };
+    if (slash == std::string::npos || v.find('/', slash + 1) != std::string::npos) throw bad("must be K/N with 0 <= K < N");
+    try {
+      opt.shards = static_cast<int>(parse_integer(flag, v.substr(slash + 1), 1, 1000000));
+      opt.shard = static_cast<int>(parse_integer(flag, v.substr(0, slash), 0, opt.shards - 1));
+    } catch (const ConfigError&) {
+      throw bad("must be K/N with whole numbers 0 <= K < N <= 1000000");
+    }
   }
   Args a = parse_args(rest, "dataset", false);
   if (a.help) {

@@ -1,5 +1,5 @@
-// mcref.lambert_sphere: d'Eon 2021, "A Hitchhiker's guide to multiple
-// scattering"/Lambertian-sphere half-space BRDFs, vectorised; names follow the
+// mcref.lambert_sphere: d'Eon 2021, "An analytic BRDF for materials with
+// spherical Lambertian scatterers" (half-space BRDFs), vectorised; names follow the
 // suite models (validate/spheres/sphere_models.cpp).
 // BRDFs: 1/sr WITHOUT the cosine; mu_i, mu_o the cosines of omega_i, omega_o
 // (both away from the surface); phi = phi_o - phi_i, 0 back toward the light.

@@ -5,6 +5,8 @@
 # date and writes the same rows, that a changed setting reruns only what depends on it,
 # and the rejection of a bad stage file (one line, exit 2, nothing created).
 import json
+import os
+import subprocess
 
 import pytest
 
@@ -116,3 +118,24 @@ def test_bad_stage_file(tiny_stage, tmp_path, text, message):
     p = stage(bad, tmp_path / "out", "--mcref", BINARY)
     assert p.returncode == 2 and message in p.stderr and "bad.toml" in p.stderr, p.stderr
     assert len(p.stderr.strip().splitlines()) == 1 and not (tmp_path / "out").exists()
+
+
+def test_stale_parts_are_replaced_and_other_errors_leave_files_alone(tmp_path_factory):
+    # Parts of another dataset (its TOML changed after an interrupted run) made the
+    # stage fail; any error with "exists and" in it made it delete the output.
+    from spongecake.stage import Stage, StageError
+    d = tiny_dir(tmp_path_factory, "stale")
+    out = d / "out"
+    out.mkdir()
+    (d / "other.toml").write_text((d / "tiny.toml").read_text().replace("seed = ", "seed = 9"))
+    subprocess.run([BINARY, "dataset", str(d / "other.toml"), "-o", str(out / "x.h5"), "--stop-after", "1", "--quiet"],
+                   check=True)
+    s = Stage(str(out), BINARY, 1, 1, True)
+    s.dataset("x", str(d / "tiny.toml"))
+    assert (out / "x.h5").exists() and not (out / "x.h5.parts").exists()
+    # A file where the parts directory goes: mcref's error is raised, the output left alone.
+    os.remove(out / "x.h5")
+    (out / "x.h5.parts").write_text("not a directory")
+    with pytest.raises(StageError):
+        s.dataset("x", str(d / "tiny.toml"))
+    assert (out / "x.h5.parts").read_text() == "not a directory"

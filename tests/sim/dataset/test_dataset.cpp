@@ -244,6 +244,13 @@ TEST_F(DatasetConfigTest, BadInputNamesFileKeyAndRange) {
   expect("[dataset]\nexperiment = \"base.toml\"\ncompression = 12\n", {"dataset.compression", "9"});
   expect(dataset_with("key = \"geometry.layer.0.alpha\"\nvalues = [0.1]\n[[parameter]]\nkey = \"geometry.layer.0.alpha\"\nvalues = [0.2]", ""),
          {"parameter.1.key", "twice"});
+  expect(dataset_with("key = \"geometry.layer.0.alpha\"\nvalues = [0.1]", "tables = [\"brdf\", \"brdf\"]"),
+         {"ds.toml", "dataset.tables", "\"brdf\" twice"});  // was found after the first entry's simulation
+  // 1024^7 = 2^70 grid points wrapped to 0: an empty dataset, exit 0.
+  std::string wide = "[dataset]\nexperiment = \"base.toml\"\n", values = "[0";
+  for (int v = 1; v < 1024; ++v) values += ", " + std::to_string(v);
+  for (int k = 0; k < 7; ++k) wide += "\n[[parameter]]\nkey = \"geometry.layer.0.p" + std::to_string(k) + "\"\nvalues = " + values + "]\n";
+  expect(wide, {"ds.toml", "parameter.4.values", "2^40"});
 }
 
 // A base experiment reading geometry.density_vdb: the file's content, with its

@@ -219,6 +219,20 @@ TEST_F(DatasetRun, ThreadCountResumeShardsAndMergeGiveTheSameBytes) {
   EXPECT_EQ(std::system(("cmp -s '" + path("cli.h5") + "' '" + path("full.h5") + "'").c_str()), 0);
 }
 
+// A run stopped after OUTPUT was committed, while it removed the parts, left
+// them there for good: a run that finds OUTPUT up to date now removes this
+// dataset's parts and temporaries (and the directory, once empty).
+TEST_F(DatasetRun, PartsLeftBesideACommittedOutputAreRemoved) {
+  run("out.h5", 0, 1, 1, 2);  // two parts
+  run("whole.h5");
+  fs::copy_file(path("whole.h5"), path("out.h5"));
+  std::ofstream(path("out.h5.parts/entry-3.h5.tmp.999999")) << "half written";
+  const mcref::DatasetRunSummary again = run("out.h5");
+  EXPECT_TRUE(again.up_to_date);
+  EXPECT_FALSE(fs::exists(path("out.h5.parts"))) << "parts left beside the committed output";
+  EXPECT_TRUE(slurp(path("out.h5")) == slurp(path("whole.h5")));
+}
+
 // A part holds its tables' sums only (storage "sums" on the root and on each
 // table, no value nor stderr dataset) and reads back as the entry the
 // assembled file holds (the same sums and batches). A part in full storage
@@ -385,8 +399,10 @@ TEST_F(DatasetRun, CommandLineErrorsAreOneLineAndWriteNothing) {
   EXPECT_NE(err.find("[0.0001, 1000]"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(path("bad.h5")));
   EXPECT_FALSE(fs::exists(path("bad.h5.parts")));
-  EXPECT_EQ(cli("dataset ds.toml -o x.h5 --shard 3/3", &err), 2);
-  EXPECT_NE(err.find("--shard"), std::string::npos) << err;
+  for (const char* shard : {"3/3", "1/2/3", "0/0", "x/2"}) {  // the value as given (it said "= 2/3" for 1/2/3)
+    EXPECT_EQ(cli(std::string("dataset ds.toml -o x.h5 --shard ") + shard, &err), 2);
+    EXPECT_NE(err.find(std::string("key '--shard': = ") + shard + " must be K/N"), std::string::npos) << err;
+  }
   EXPECT_EQ(cli("dataset ds.toml", &err), 2);
   EXPECT_EQ(cli("merge -o x.h5", &err), 2);
   EXPECT_FALSE(fs::exists(path("x.h5")));
