@@ -251,7 +251,13 @@ void check_parameter_values(const DatasetConfig& c) {
       try {
         parse_experiment(text.str(), c.experiment_file);
       } catch (const ConfigError& e) {
-        throw ConfigError(c.file, p.key, value_text(*value.holder.get(0)) + " (" + what + ") makes an invalid experiment, the other parameters as in entry 0: " + e.what());
+        // The error may be another parameter's, at its entry-0 value: blame that one.
+        const std::string message = e.what();
+        for (std::size_t q = 0; q < c.parameters.size(); ++q)
+          if (q != k && message.find("key '" + c.parameters[q].key + "'") != std::string::npos)
+            throw ConfigError(c.file, c.parameters[q].key, value_text(*drawn[q].holder.get(0)) +
+                                                               " (as drawn for entry 0) makes an invalid experiment: " + message);
+        throw ConfigError(c.file, p.key, value_text(*value.holder.get(0)) + " (" + what + ") makes an invalid experiment, the other parameters as in entry 0: " + message);
       }
     }
   }

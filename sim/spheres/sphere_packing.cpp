@@ -38,14 +38,14 @@ double SpherePacking::number_density() const {
 }
 
 double SpherePacking::depth_in_mfp() const {
-  return depth_mfp > 0 ? depth_mfp : diffusion_depth_mfp(albedo.max(), transmission_threshold);
+  return depth_mfp > 0 ? depth_mfp : transmission_depth_mfp(albedo.max(), transmission_threshold);
 }
 
 double SpherePacking::expected_count() const {
   return placement == SpherePlacement::volumetric ? 0.0 : number_density() * tile * tile * depth();
 }
 
-double diffusion_depth_mfp(double c, double threshold) {
+double transmission_depth_mfp(double c, double threshold) {
   if (c >= 1.0) return 4.0 / (3.0 * kOneMinusG * threshold);  // conservative: T ~ 4 / (3 (1-g) D)
   return std::log(kTransmissionPrefactor / threshold) / lambert_sphere::decay_rate(c);
 }

@@ -61,7 +61,7 @@ struct SpherePacking {
 // (Diffusion's 1 / sqrt(3 (1 - c)(1 - g)) decay length with a prefactor 2 left
 // 1.27 times the threshold at c = 0.64.)
 inline constexpr double kTransmissionPrefactor = 4;
-double diffusion_depth_mfp(double c, double threshold);
+double transmission_depth_mfp(double c, double threshold);
 
 // Free flights longer than this many tile periods make the walk wrap the
 // periodic tile as many times per flight: the cost cliff of dilute packings.

@@ -54,7 +54,7 @@ void read_spheres_geometry(TomlReader& g, Experiment& e) {
   } else if (p.depth_in_mfp() > 5000) {
     g.fail("transmission_threshold", "needs a slab ~" + format("%.0f", p.depth_in_mfp()) +
                                          " mean free paths deep at albedo " + format("%g", p.albedo.max()) +
-                                         " (diffusion estimate); set depth_mfp or raise the threshold");
+                                         " (from its asymptotic decay rate); set depth_mfp or raise the threshold");
   }
   // At most 1000: x, y go to Embree in single precision (a step of 6e-5 radii at
   // 1000; at 1e4, 1e-3, and grazing hits were missed).

@@ -121,7 +121,7 @@ void BM_VolumetricWalk(benchmark::State& state) {
   BrdfAccumulator acc(l, 0.0, sums);
   WalkSettings s;
   s.albedo = Rgb(state.range(0) / 1000.0);
-  s.depth_mfp = diffusion_depth_mfp(s.albedo.max(), 1e-4);
+  s.depth_mfp = transmission_depth_mfp(s.albedo.max(), 1e-4);
   Rng rng(3);
   Rgb tr;
   for (auto _ : state) volumetric_path(s, {0, 0, 1}, rng, acc, tr);

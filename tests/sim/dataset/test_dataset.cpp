@@ -253,6 +253,28 @@ TEST_F(DatasetConfigTest, BadInputNamesFileKeyAndRange) {
   expect(wide, {"ds.toml", "parameter.4.values", "2^40"});
 }
 
+// A value out of range is blamed on its own parameter: layer 1's albedo drawn
+// from [0.5, 1.5] beside a layer count in [1, 2] was reported as the count's
+// fault ("2 (values) makes an invalid experiment") when entry 0 drew 1.5.
+TEST_F(DatasetConfigTest, AnInvalidValueIsBlamedOnItsOwnParameter) {
+  int drew_the_bad_one = 0;
+  for (int seed = 1; seed <= 8; ++seed) {
+    const DatasetConfig c = parse("[dataset]\nexperiment = \"base.toml\"\nentries = 1\nseed = " + std::to_string(seed) +
+                                  "\n[[parameter]]\nkey = \"geometry.layer.count\"\nvalues = [1, 2]\n"
+                                  "[[parameter]]\nkey = \"geometry.layer.1.albedo\"\nchoices = [0.5, 1.5]\n");
+    std::string e;
+    try {
+      mcref::check_parameter_values(c);
+    } catch (const ConfigError& x) {
+      e = x.what();
+    }
+    ASSERT_NE(e.find("ds.toml: key 'geometry.layer.1.albedo': "), std::string::npos) << "seed " << seed << ": " << e;
+    EXPECT_EQ(e.find("key 'geometry.layer.count'"), std::string::npos) << "seed " << seed << ": " << e;
+    drew_the_bad_one += e.find("as drawn for entry 0") != std::string::npos;
+  }
+  EXPECT_GT(drew_the_bad_one, 0);  // the case that was misreported occurred
+}
+
 // A base experiment reading geometry.density_vdb: the file's content, with its
 // path as the experiment gives it, is part of the dataset's identity (a changed
 // file gives another identity; reaching the same files by another path does
