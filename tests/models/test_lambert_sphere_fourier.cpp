@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -155,21 +156,23 @@ TEST(lambert_sphere_Fourier, MultipleScatteringFirstModeVariants) {
               0.0, 1e-3);
 }
 
-// Independent check of the factor 2 with all orders of scattering: an analog
-// volumetric Monte Carlo of the half-space (extinction 1, albedo c = 0.8,
-// EXACT phase function Eq. 1 sampled by Eq. 5), next-event estimation of the
-// multiple-scattering (order >= 2) Fourier modes at mu_i = 0.6, mu_o = 0.5 from
-// 32 azimuths per collision (trapezoid rule, exact for the periodic integrand
-// to far below the noise). Fixed seed, 2 10^5 photons; stderr from the photon
-// scores. The reference (three-term multiple scattering) must agree within
-// 4 stderr + 2 % (the three-term truncation: measured 0.2 % at c = 0.8 and
-// 1.3 % at c = 0.95 with 4 10^5 photons); the published f_m^(1) (half of it)
-// must be rejected (it is ~55 stderr away).
-TEST(lambert_sphere_Fourier, IndependentMonteCarloDecidesTheFactorTwo) {
+namespace {
+
+// Multiple-scattering (order >= 2) Fourier modes m = 0, 1, 2 at (mu_i, mu_o) of
+// the half-space (extinction 1, albedo c) by an analog volumetric Monte Carlo
+// with next-event estimation from 32 azimuths per collision (trapezoid rule,
+// exact for the periodic integrand to far below the noise). exact_phase: Eq. 1
+// sampled by Eq. 5; otherwise the three-term p_3 of the reference, directions
+// from an even mixture of the sphere and Eq. 1, weighted by p_3 over their
+// density (signed: p_3 < 0 near mu = 1).
+struct ModeEstimate {
+  double mean[3], se[3];
+};
+ModeEstimate monte_carlo_modes(double c, double mui, double muo, long photons, bool exact_phase, std::uint64_t seed) {
   using mcref::Vec3;
-  const double c = 0.8, mui = 0.6, muo = 0.5, pi = mcref::kPi;
-  const long photons = 200000;
+  const double pi = mcref::kPi;
   const int k_phi = 32;
+  auto phase = [&](double mu) { return exact_phase ? ls::phase_function(mu) : ls::phase_function_three_term(mu); };
   const Vec3 wi{std::sqrt(1 - mui * mui), 0, mui};
   std::vector<Vec3> wo(k_phi);
   for (int k = 0; k < k_phi; ++k) {
@@ -177,7 +180,7 @@ TEST(lambert_sphere_Fourier, IndependentMonteCarloDecidesTheFactorTwo) {
     wo[k] = {std::sqrt(1 - muo * muo) * std::cos(phi), std::sqrt(1 - muo * muo) * std::sin(phi), muo};
   }
   double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
-  mcref::Rng rng(mcref::stream_seed({2021, 22}));
+  mcref::Rng rng(seed);
   for (long n = 0; n < photons; ++n) {
     Vec3 d = -wi;  // propagation
     double z = 0, w = 1, score[3] = {0, 0, 0};
@@ -188,18 +191,25 @@ TEST(lambert_sphere_Fourier, IndependentMonteCarloDecidesTheFactorTwo) {
         const double att = std::exp(z / muo) / muo;  // exp(-depth / mu_o) / mu_o
         for (int k = 0; k < k_phi; ++k) {
           const double phi = 2 * pi * (k + 0.5) / k_phi;
-          const double v = w * c * ls::phase_function(mcref::dot(d, wo[k])) * att / k_phi;
+          const double v = w * c * phase(mcref::dot(d, wo[k])) * att / k_phi;
           score[0] += v;
           score[1] += 2 * v * std::cos(phi);
           score[2] += 2 * v * std::cos(2 * phi);
         }
       }
-      w *= c;
-      if (w < 1e-3) {  // Russian roulette
+      double mu;
+      if (exact_phase) {
+        w *= c;
+        mu = ls::sample_phase_cosine_exact(rng.uniform(), rng.uniform(), rng.uniform());
+      } else {  // half uniform, half Eq. 1: a density > 0 wherever p_3 is not 0 (Eq. 1 is 0 at mu = 1)
+        const double u = rng.uniform(), a = rng.uniform(), b = rng.uniform(), e = rng.uniform();
+        mu = u < 0.5 ? 2 * a - 1 : ls::sample_phase_cosine_exact(a, b, e);
+        w *= c * phase(mu) / (0.5 / (4 * pi) + 0.5 * ls::phase_function(mu));
+      }
+      if (std::fabs(w) < 1e-3) {  // Russian roulette
         if (rng.uniform() < 0.5) break;
         w *= 2;
       }
-      const double mu = ls::sample_phase_cosine_exact(rng.uniform(), rng.uniform(), rng.uniform());
       d = ls::scattered_direction(d, mu, rng.uniform());
     }
     for (int m = 0; m < 3; ++m) {
@@ -207,24 +217,50 @@ TEST(lambert_sphere_Fourier, IndependentMonteCarloDecidesTheFactorTwo) {
       sum2[m] += score[m] * score[m];
     }
   }
-  const ls::ReferenceBrdf ref(c);
-  ls::BrdfOptions exact;
-  exact.h1 = ls::H1Source::exact;
-  exact.exact_h0 = true;
-  exact.exact_constants = true;
-  const ls::Brdf published(c, exact);  // first_mode = published
+  ModeEstimate e;
   for (int m = 0; m < 3; ++m) {
-    const double mean = sum[m] / photons, se = std::sqrt((sum2[m] / photons - mean * mean) / photons);
-    const double r = ref.multiple_mode(m, mui, muo);
-    record("mc_fm" + std::to_string(m), mean);
-    record("mc_fm" + std::to_string(m) + "_stderr", se);
-    record("reference_fm" + std::to_string(m), r);
-    EXPECT_NEAR(mean, r, 4 * se + 0.02 * std::fabs(r)) << "m " << m;
+    e.mean[m] = sum[m] / photons;
+    e.se[m] = std::sqrt((sum2[m] / photons - e.mean[m] * e.mean[m]) / photons);
   }
-  const double mean1 = sum[1] / photons, se1 = std::sqrt((sum2[1] / photons - mean1 * mean1) / photons);
+  return e;
+}
+
+}  // namespace
+
+// The reference three-term half-space (ReferenceBrdf, what decides the factor
+// 2 of Eq. 22) against an independent Monte Carlo of the same three-term
+// medium, c = 0.8, mu_i = 0.6, mu_o = 0.5: seed {2021, 23}, 4 10^5 photons,
+// stderr from the photon scores; each mode within 3.6 stderr (two-sided normal
+// quantile at 1 - (1 - 1e-3)^(1/3), Sidak over the 3 modes). The published
+// f_m^(1) (half of it) must be rejected (> 20 stderr). The same Monte Carlo
+// with the exact phase function Eq. 1 is recorded beside it: the three-term
+// truncation, measured, not judged.
+TEST(lambert_sphere_Fourier, IndependentMonteCarloDecidesTheFactorTwo) {
+  const double c = 0.8, mui = 0.6, muo = 0.5;
+  const ModeEstimate mc = monte_carlo_modes(c, mui, muo, 400000, false, mcref::stream_seed({2021, 23}));
+  const ModeEstimate exact = monte_carlo_modes(c, mui, muo, 200000, true, mcref::stream_seed({2021, 22}));
+  const ls::ReferenceBrdf ref(c);
+  ls::BrdfOptions options;
+  options.h1 = ls::H1Source::exact;
+  options.exact_h0 = true;
+  options.exact_constants = true;
+  const ls::Brdf published(c, options);  // first_mode = published
+  for (int m = 0; m < 3; ++m) {
+    const double r = ref.multiple_mode(m, mui, muo);
+    const std::string k = std::to_string(m);
+    record("mc_three_term_fm" + k, mc.mean[m]);
+    record("mc_three_term_fm" + k + "_stderr", mc.se[m]);
+    record("mc_exact_phase_fm" + k, exact.mean[m]);
+    record("mc_exact_phase_fm" + k + "_stderr", exact.se[m]);
+    record("reference_fm" + k, r);
+    record("truncation_fm" + k + "_relative", (exact.mean[m] - r) / r);
+    EXPECT_NEAR(mc.mean[m], r, 3.6 * mc.se[m]) << "m " << m;
+    // The resolution asked of the test: 10 % of f^(0) and f^(1), 25 % of the small f^(2) (0.4 % of f^(0)).
+    EXPECT_LT(3.6 * mc.se[m], (m < 2 ? 0.1 : 0.25) * std::fabs(r)) << "m " << m;
+  }
   const double pub = published.multiple_first_mode(mui, muo);
   record("published_fm1", pub);
-  record("mc_minus_published_fm1_in_stderr", (mean1 - pub) / se1);
-  EXPECT_GT(std::fabs(mean1 - pub), 20 * se1);
-  EXPECT_LT(mean1, 0.0);  // f_m^(1) < 0 with phi = 0 toward the light: multiple scattering leans to the mirror side
+  record("mc_minus_published_fm1_in_stderr", (mc.mean[1] - pub) / mc.se[1]);
+  EXPECT_GT(std::fabs(mc.mean[1] - pub), 20 * mc.se[1]);
+  EXPECT_LT(mc.mean[1], 0.0);  // f_m^(1) < 0 with phi = 0 toward the light: multiple scattering leans to the mirror side
 }

@@ -149,24 +149,26 @@ TEST(SpheresGeometry, RsaHasNoOverlaps) {
 }
 
 // RSA over-fills a free face (its centres there have half the neighbours):
-// placed in [-depth, 0] alone, the top radius held 1.6 times the bulk density.
-// The packing is made deeper and cut, so the density of centres in the top
-// radius, and the bulk's volume fraction, match f = n 4 pi / 3 within the
-// realization-to-realization standard error (12 realizations, seeds 40-51).
+// placed in [-depth, 0] alone, the top radius held 1.64 times the bulk density
+// and the bulk was 2.3 % thin. Periodic in z over a deeper slab and cut, the
+// density of centres in the top radius (but the highest one, which the shift
+// puts there: +5 % on this tile) and in the bulk match f = n 4 pi / 3 within 4
+// realization-to-realization standard errors (48 realizations, seeds 40-87,
+// tile 32: the test resolves a face layer 10 % denser than the bulk).
 TEST(SpheresGeometry, RsaIsUniformUpToTheFace) {
   SpherePacking p;
   p.placement = SpherePlacement::rsa;
   p.volume_fraction = 0.30;
-  p.tile = 16;
+  p.tile = 32;
   p.depth_mfp = 12;
   const double n = p.volume_fraction / (4 * kPi / 3), area = p.tile * p.tile, depth = p.depth();
-  const int realizations = 12;
+  const int realizations = 48;
   std::vector<double> face, bulk;
   for (int r = 0; r < realizations; ++r) {
     Rng rng(40 + r);
     int top = 0, inner = 0;
     for (const Vec3& x : place_rsa(p, rng)) {
-      top += x.z > -1;
+      top += x.z > -1 && x.z < 0;  // the highest centre, at 0, left out
       inner += x.z < -1 && x.z > -depth + 1;
     }
     face.push_back(top / (n * area * 1));
@@ -177,7 +179,7 @@ TEST(SpheresGeometry, RsaIsUniformUpToTheFace) {
     for (double x : *v) sum += x, sum2 += x * x;
     const double mean = sum / realizations, se = std::sqrt((sum2 / realizations - mean * mean) / (realizations - 1));
     EXPECT_LT(std::fabs(mean - 1), 4 * se) << (v == &face ? "face" : "bulk") << " density / n " << mean << " +- " << se;
-    EXPECT_LT(se, 0.1);  // resolves the old face layer (1.6)
+    EXPECT_LT(4 * se, 0.1);  // the resolution the comment states
   }
 }
 
