@@ -31,7 +31,9 @@ TEST(Examples, EveryExperimentParses) {
 }
 
 TEST(Examples, EverySuiteAndItsCasesParse) {
-  for (const std::string& f : files_in("validate/suites")) {
+  const auto suites = files_in("validate/suites");
+  ASSERT_GE(suites.size(), 4u);  // default, slab, micrograin_brdf, spheres
+  for (const std::string& f : suites) {
     Suite s;
     ASSERT_NO_THROW(s = load_suite(f)) << f;
     EXPECT_FALSE(s.cases.empty()) << f;
@@ -41,14 +43,17 @@ TEST(Examples, EverySuiteAndItsCasesParse) {
 }
 
 TEST(Examples, EveryDatasetParsesAndItsEntriesValidate) {
+  int datasets = 0;
   for (const std::string& f : files_in("validate/datasets")) {
     if (f.find("_base.toml") != std::string::npos) continue;  // a base experiment, not a dataset
+    ++datasets;
     DatasetConfig d;
     ASSERT_NO_THROW(d = load_dataset(f)) << f;
     ASSERT_GT(d.entries(), 0) << f;
     for (std::int64_t i : {std::int64_t(0), d.entries() - 1})
       EXPECT_NO_THROW(entry_experiment(d, plan_entry(d, i))) << f << " entry " << i;
   }
+  EXPECT_GE(datasets, 8);  // the eight shipped (validate/datasets)
 }
 
 // The quick experiment covers every micrograin quantity; 8 batches, < 2 s.

@@ -22,8 +22,10 @@ TEST(SimulatedPoreBase, NormalIncidenceMirrorLobeIsExact) {
   l.phi_bins = 2;
   const std::vector<Table> tables = make_brdf_tables("brdf", {0.0}, {0.0}, l);
   const BaseReflection base{[](int, Vec3, Vec3) { return 0.0; }, [](int ch, Vec3) { return 0.3 * (ch + 1); }};
+  int checked = 0;
   for (const Table& t : tables) {
     if (t.name != "brdf_delta" && t.name != "brdf_albedo") continue;
+    ++checked;
     const PoreBase& p = simulated_pore_base(t, ex, base);
     const std::size_t base_component = 1, total = t.axes[2].size() - 1;
     for (std::size_t ch = 0; ch < 3; ++ch)
@@ -34,4 +36,5 @@ TEST(SimulatedPoreBase, NormalIncidenceMirrorLobeIsExact) {
         EXPECT_NEAR(p.stderrs[t.index({0, 0, comp, ch})], 0.0, 1e-12) << t.name;
       }
   }
+  EXPECT_EQ(checked, 2);  // a renamed table would leave the loop empty
 }
