@@ -220,22 +220,16 @@ def draw_comparison(ax, raxes, table, view, styles, tag, ylabel=None):
     scale_values = np.concatenate(scale_values) if scale_values else np.array([])
     if ps.wants_log(scale_values):
         ps.set_log_y(ax, scale_values)
-    for kind, rax in raxes.items():
-        ps.scale_residual_axis(rax, kind, np.concatenate(residuals[kind]) if residuals[kind] else np.array([]))
-    rax = list(raxes.values())[-1]
+    every = ps.finish_residual_axes(ax, raxes, residuals)
+    rax = every[-1]
     rax.set_xlabel(view.xlabel)
-    every = [ax] + list(raxes.values())
     if cat:
         for a in every:
             a.set_xticks(view.x)
             a.set_xticklabels(view.categorical)
             a.set_xlim(view.x[0] - 0.4, view.x[-1] + 0.2 + 0.1 * len(table.models))
-    for a in every[:-1]:
-        a.tick_params(labelbottom=False)
     unit = f" ({table.unit})" if table.unit not in ("", "1") else ""
     ax.set_ylabel(ylabel or greek(table.quantity) + unit)
-    for a in every:
-        a.grid(alpha=0.3)
     handles, labels = ax.get_legend_handles_labels()
     if any(labels) and (n > 1 or cat):  # the series key, under the residual panel
         rax.legend(handles, labels, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.42), frameon=False,

@@ -99,21 +99,14 @@ def overlay_figure(label, cases):
     scale = np.concatenate(scale)
     if ps.wants_log(scale):
         ps.set_log_y(ax, scale)
-    for kind, rax in raxes.items():
-        ps.scale_residual_axis(rax, kind, np.concatenate(resid[kind]) if resid[kind] else np.array([]))
     ref = curves[0][1]
     unit = f" ({ref.unit})" if ref.unit not in ("", "1") else ""
     ax.set_ylabel(greek(ref.quantity) + unit)
-    every = [ax] + list(raxes.values())
-    for a in every[:-1]:
-        a.tick_params(labelbottom=False)
-    rax = every[-1]
+    rax = ps.finish_residual_axes(ax, raxes, resid)[-1]
     rax.set_xlabel(curves[0][3].xlabel)
     if curves[0][3].categorical:
         rax.set_xticks(curves[0][3].x)
         rax.set_xticklabels(curves[0][3].categorical)
-    for a in every:
-        a.grid(alpha=0.3)
     leg = fig.legend(handles=case_handles, loc="upper left", bbox_to_anchor=(0.66, 0.9), frameon=False,
                      title="cases: simulation (points)", fontsize=8.5)
     fig.add_artist(leg)

@@ -102,6 +102,20 @@ def scale_residual_axis(ax, kind, values):
     ax.set_ylabel(label, fontsize=8)
 
 
+def finish_residual_axes(ax, raxes, residuals):
+    """Scales each residual panel (raxes: kind -> axes, top to bottom; residuals: kind -> list
+    of arrays), keeps the x labels of the lowest panel only, grids them all; returns
+    [ax, *residual panels]."""
+    for kind, rax in raxes.items():
+        scale_residual_axis(rax, kind, np.concatenate(residuals[kind]) if residuals[kind] else np.array([]))
+    every = [ax] + list(raxes.values())
+    for a in every[:-1]:
+        a.tick_params(labelbottom=False)
+    for a in every:
+        a.grid(alpha=0.3)
+    return every
+
+
 def wants_log(values):
     """Log y when the positive values span more than a decade."""
     v = values[np.isfinite(values) & (values > 0)]
