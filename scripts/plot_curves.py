@@ -245,7 +245,7 @@ def model_legend(fig, styles, top):
     handles = [Line2D([], [], color=c, ls=st, lw=1.6, label=m) for m, (c, st, _) in styles.items()]
     if handles:
         fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, top), ncol=min(len(handles), 3),
-                   frameon=False, handlelength=3.0, title="models (lighter shades: later series); simulation: points with ±1σ bars")
+                   frameon=False, handlelength=3.0, title="models (lighter shades: later series); simulation: points with ±1σ bars\n" + ps.RESIDUAL_KEY)
 
 
 def case_figure(case):

@@ -111,7 +111,7 @@ def overlay_figure(label, cases):
                      title="cases: simulation (points)", fontsize=8.5)
     fig.add_artist(leg)
     fig.legend(handles=[Line2D([], [], color="k", ls=style[m], lw=1.4, label=m) for m in model_names],
-               loc="lower left", bbox_to_anchor=(0.66, 0.1), frameon=False, title="models (lines)", fontsize=8.5,
+               loc="lower left", bbox_to_anchor=(0.66, 0.1), frameon=False, title="models (lines)\n" + ps.RESIDUAL_KEY.replace(", ", ",\n"), fontsize=8.5,
                handlelength=3.0)
     fig.suptitle(f"{label}: {ref.name} of {len(curves)} cases overlaid")
     return fig

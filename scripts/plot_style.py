@@ -60,7 +60,9 @@ def model_kind(model):
     return "z" if model.exact else "rel"
 
 
-RESIDUAL_LABEL = {"z": "z = (sim − model)\n/ σ", "rel": "model / sim − 1\n(%)"}
+RESIDUAL_LABEL = {"z": "z", "rel": "model/sim−1 (%)"}
+# Said once per figure, in the model legend's title: the axis labels stay short enough for the panels.
+RESIDUAL_KEY = "residuals: z = (sim − model)/σ for exact models, model/sim − 1 in % for approximate ones"
 SIGNAL_SIGMAS = 5  # the report's relative error is over cells with |sim| > 5 σ (validate/metrics.cpp)
 
 
@@ -97,7 +99,7 @@ def scale_residual_axis(ax, kind, values):
         ax.set_yticks(ticks)
         ax.set_yticklabels([f"{t:g}" for t in ticks])
         ax.set_ylim(-top, top)
-        label += f"\nlog beyond ±{lin}"
+        label += f"\n(log beyond ±{lin})"
     ax.axhline(0, color="k", lw=0.8)
     ax.set_ylabel(label, fontsize=8)
 
