@@ -78,10 +78,11 @@ bool usable_part(const std::string& path, const DatasetHeader& expect, std::int6
 
 // Removes this shard's parts once OUTPUT holds them, the temporary files of
 // interrupted part writes, and the directory if that leaves it empty.
-void remove_parts(const std::string& dir, const std::vector<std::int64_t>& indices) {
+// (This shard's entries: shard + k shards, k < entries.)
+void remove_parts(const std::string& dir, std::int64_t shard, std::int64_t shards, std::int64_t entries) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return;
-  for (std::int64_t i : indices) fs::remove(part_path(dir, i), ec);
+  for (std::int64_t k = 0; k < entries; ++k) fs::remove(part_path(dir, shard + k * shards), ec);
   for (const auto& f : fs::directory_iterator(dir, ec))
     if (f.path().filename().string().rfind("entry-", 0) == 0 && f.path().filename().string().find(".h5.tmp.") != std::string::npos)
       fs::remove(f.path(), ec);
@@ -140,9 +141,7 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
     // Parts left by a run stopped after OUTPUT was committed (while it removed them).
     if (fs::is_directory(o.output + ".parts")) {
       const DirectoryLock lock(o.output + ".parts", o.output, "-o");
-      std::vector<std::int64_t> indices;
-      for (std::int64_t k = 0; k < s.entries; ++k) indices.push_back(index(k));
-      remove_parts(o.output + ".parts", indices);
+      remove_parts(o.output + ".parts", o.shard, o.shards, s.entries);
     }
   });
   ranks.broadcast(up_to_date);
@@ -221,9 +220,7 @@ DatasetRunSummary run_dataset(const DatasetConfig& c, const DatasetRunOptions& o
   s.seconds = progress.elapsed_seconds();
   if (!assembler) return s;
   assembler->commit();
-  std::vector<std::int64_t> indices;
-  for (std::int64_t k = 0; k < s.entries; ++k) indices.push_back(index(k));
-  remove_parts(dir, indices);
+  remove_parts(dir, o.shard, o.shards, s.entries);
   s.complete = true;
   return s;
 }

@@ -2,7 +2,6 @@
 // (array of shape (n, k), values in [0, 1)) or from a seed (n draws of the
 // project's Rng, models/core/rng.h), for users' own chi-square tests.
 #include <cmath>
-#include <cstdio>
 #include <functional>
 
 #include "models/core/rng.h"
@@ -42,12 +41,9 @@ std::vector<double> uniforms(const py::object& u, const py::object& seed, std::i
   // (before: n * k wrapped round to 0 for n = 2^62 and gave empty arrays).
   std::string why;
   const double budget = memory_budget(&why), need = 8.0 * static_cast<double>(n) * (k + 4);
-  if (need > budget) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, " samples would need about %.3g GB, more than the budget of %.3g GB (", need / 1e9,
-                  budget / 1e9);
-    throw ConfigError("<python>", "n", "= " + std::to_string(n) + buf + why + ")");
-  }
+  if (need > budget)
+    throw ConfigError("<python>", "n", "= " + std::to_string(n) + " samples would need about " + bytes_text(need) +
+                                           ", more than the budget of " + bytes_text(budget) + " (" + why + ")");
   Rng rng(integer_argument("seed", seed, UINT64_MAX));
   std::vector<double> v(static_cast<std::size_t>(n) * k);
   for (double& x : v) x = rng.uniform();
