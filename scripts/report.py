@@ -48,12 +48,18 @@ def error_colour(value, good, bad):
     return f"hsl({120 * (1 - t):.0f}, 70%, 82%)"
 
 
+def p_green(significance):
+    """The p from which an exact model's p is green: 0.05, or twice the
+    significance when that is larger (green must stay above red)."""
+    return min(1.0, max(0.05, 2 * significance))
+
+
 def p_colour(p, significance):
-    """Background colour of an exact model's p: green at or above 0.05, red at or
-    below the significance level, through yellow on a log scale; none if unknown."""
+    """Background colour of an exact model's p: green at or above p_green, red at
+    or below the significance level, through yellow on a log scale; none if unknown."""
     if p is None:
         return ""
-    return error_colour(1 / max(p, 1e-300), 1 / 0.05, 1 / significance)
+    return error_colour(1 / max(p, 1e-300), 1 / p_green(significance), 1 / significance)
 
 
 def case_plots(case_names, plot_files):
@@ -107,12 +113,18 @@ def budget_groups(budget):
     return groups
 
 
-def load_not_reproduced(path):
+def load_not_reproduced(path, suite):
+    """The figures no case reproduces, when the list describes `suite` (its
+    `suite` key); none for another suite, whose cases it does not know."""
     try:
         with open(path, "rb") as f:
             data = tomllib.load(f)
     except (OSError, tomllib.TOMLDecodeError) as e:
         fail(f"{path}: {e}")
+    if not isinstance(data.get("suite"), str):
+        fail(f"{path}: suite: the name of the suite the list describes (a string) is required")
+    if data["suite"] != suite:
+        return []
     rows = data.get("figure", [])
     for i, row in enumerate(rows):
         for key in ("paper", "figure", "reason"):
@@ -199,8 +211,8 @@ def render_results(out_dir, results, not_reproduced_path):
     return env.get_template(TEMPLATE).render(
         results=results, cases=cases, checks=checks, models=models, counts=status_counts(checks), rules=rules,
         statuses=STATUSES, plots=plots, index=figure_index(cases, plots, plot_files),
-        not_reproduced=load_not_reproduced(not_reproduced_path), spongecake=load_spongecake(out_dir),
-        spongecake_methods=SPONGECAKE_METHODS)
+        not_reproduced=load_not_reproduced(not_reproduced_path, results.get("suite")), spongecake=load_spongecake(out_dir),
+        spongecake_methods=SPONGECAKE_METHODS, p_green=p_green(results["significance"]))
 
 
 def main(argv):

@@ -8,11 +8,17 @@
 # Extra arguments go to `mcref validate` (e.g. --quiet, --threads 2, --case 'fig9_*');
 # --quiet and --threads go to the SpongeCake stage too, and --case leaves it out.
 set -euo pipefail
+for a in "$@"; do
+  if [ "$a" = --help ] || [ "$a" = -h ]; then  # (validate --help exits 0: the stages below would run)
+    sed -n '2,/^set /p' "$0" | sed '$d; s/^# \{0,1\}//'
+    exit 0
+  fi
+done
 cd "$(dirname "$0")/.."
 bash scripts/build.sh --target mcref
 status=0
 ./build/mcref validate validate/suites/default.toml -o out "$@" || status=$?
-if [ "$status" -le 1 ]; then  # 0: all pass, 1: some check failed; 2: bad input, nothing written
+if [ "$status" -le 1 ]; then  # 0: no check failed, 1: some did; 2: bad input, 3: an error while running
   quiet=() stage=(--jobs 2) run_stage=1
   args=("$@")
   for ((k = 0; k < ${#args[@]}; k++)); do

@@ -117,7 +117,29 @@ def load_results(out):
             raise RunError(f"{path}: cases.{i} lacks name, tables or checks (not a results.json of mcref validate?)")
         if not os.path.isfile(os.path.join(out, case["tables"])):
             raise RunError(f"{os.path.join(out, case['tables'])}: missing (the tables of case \"{case['name']}\")")
+        check_provenance(out, path, case)
     return results
+
+
+def check_provenance(out, path, case):
+    """The case's table file is the one results.json judged: a validate run that
+    stopped early (a full disk, Ctrl-C) leaves new tables beside the old
+    results.json, whose z values and verdicts are not theirs."""
+    stated = case.get("provenance")
+    if not isinstance(stated, dict):  # (results.json of older mcref: not stated)
+        return
+    tables = os.path.join(out, case["tables"])
+    try:
+        with h5py.File(tables, "r") as h5:
+            found = {k: _text(h5.attrs[k]) if k != "seed" else int(h5.attrs[k])
+                     for k in ("created", "seed", "config") if k in h5.attrs}
+    except OSError as e:
+        raise RunError(f"{tables}: cannot be read ({e})")
+    for key, value in found.items():
+        if key in stated and stated[key] != value:
+            raise RunError(f"{tables}: not the tables {path} judged ({key} {value!r} there, {stated[key]!r} in "
+                           f"results.json; a validate run stopped before it finished): run `mcref validate SUITE -o "
+                           f"{out}` again, it reuses the tables that are current")
 
 
 def identically_zero(sim, models):

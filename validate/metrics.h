@@ -6,6 +6,13 @@
 
 namespace mcref {
 
+// Batches from which a cell equal in every batch (stderr 0) is taken as exact:
+// B independent batches of a count-like estimate tie on a non-zero value by
+// chance with probability at most e^-(B-1) (a Poisson count's largest
+// non-zero probability is 1/e), 3e-7 at 16. With fewer (2 batches tie often
+// on small counts), such a cell is noted, not judged.
+constexpr long long kTieBatches = 16;
+
 struct Comparison {
   std::size_t cells = 0;         // cells compared (finite sim, model and stderr > 0)
   double chi2 = 0;               // sum of z^2
@@ -20,7 +27,7 @@ struct Comparison {
   std::size_t signal_cells = 0;  // cells with |sim| > 5 stderr
   std::size_t exact_cells = 0;   // zero-variance cells where sim equals the model (to 1e-6 relative)
   std::size_t mismatched_exact_cells = 0;  // zero-variance cells that differ slightly, or empty bins
-  std::size_t gross_mismatches = 0;  // non-empty zero-variance cells more than 1 % off the model
+  std::size_t gross_mismatches = 0;  // non-empty zero-variance cells more than 1 % off the model (kTieBatches)
   std::size_t empty_cells = 0;       // cells the simulation left empty (NaN: a batch had no sample)
   std::size_t model_undefined = 0;   // cells with a simulated value where the model is NaN
   // Simulation and model both identically zero: every cell has sim = 0 with

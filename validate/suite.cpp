@@ -30,16 +30,17 @@ namespace fs = std::filesystem;
 namespace mcref {
 
 namespace {
-Suite load_suite_at_depth(const std::string& path, int depth);
+Suite load_suite_at_depth(const std::string& path, int depth, const std::string& from_file);
 }  // namespace
 
-Suite load_suite(const std::string& path) { return load_suite_at_depth(path, 0); }
+Suite load_suite(const std::string& path) { return load_suite_at_depth(path, 0, ""); }
 
 namespace {
 
-Suite load_suite_at_depth(const std::string& path, int depth) {
+// from_file: the suite that includes this one (its suite.include names it).
+Suite load_suite_at_depth(const std::string& path, int depth, const std::string& from_file) {
   if (depth > 8) throw ConfigError(path, "suite.include", "includes nest deeper than 8 (a cycle?)");
-  const std::string text = read_input_file(path);
+  const std::string text = read_input_file(path, from_file, from_file.empty() ? "" : "suite.include");
   toml::table root;
   try {
     root = toml::parse(text, path);
@@ -57,12 +58,19 @@ Suite load_suite_at_depth(const std::string& path, int depth) {
   s.name = h.any_string("name");
   s.title = h.any_string("title", s.name);
   s.significance = h.number("significance", {0, 0.5, true, true}, 1e-3);
+  s.significance_given = h.has("significance");
   const std::vector<std::string> includes = h.strings("include");
   h.finish();
   const fs::path dir = fs::path(path).parent_path();
   // Cases of included suites (paths relative to this file) come first.
   for (const std::string& inc : includes) {
-    const Suite other = load_suite_at_depth((dir / inc).string(), depth + 1);
+    const Suite other = load_suite_at_depth((dir / inc).string(), depth + 1, path);
+    // Every case is judged at the top suite's significance: an included suite
+    // asking for another one would be silently overruled.
+    if (other.significance_given && other.significance != s.significance)
+      h.fail("significance", "= " + exact_text(s.significance) + (s.significance_given ? "" : " (not given: the default)") +
+                                 " judges every case, the included ones' too, and the included " + other.file +
+                                 " sets significance = " + exact_text(other.significance) + "; give both the same value");
     s.files.insert(s.files.end(), other.files.begin(), other.files.end());
     for (const Case& c : other.cases) {
       for (const Case& have : s.cases)
@@ -87,16 +95,21 @@ Suite load_suite_at_depth(const std::string& path, int depth) {
     k.description = c.any_string("description", "");
     k.experiment_path = (dir / c.any_string("experiment")).string();
     k.sets = c.strings("set");
-    for (const toml::table* ct : c.tables("check")) {
-      TomlReader cr(*ct, path, c.full("check"));
+    const auto checks = c.tables("check");
+    for (std::size_t j = 0; j < checks.size(); ++j) {
+      TomlReader cr(*checks[j], path, c.full("check." + std::to_string(j)));
       Check chk;
       chk.table = cr.any_string("table");
       chk.model = cr.any_string("model");
       const ModelInfo* m = find_model(chk.model);
       if (!m) cr.fail("model", "\"" + chk.model + "\" is not a known model");
-      chk.tolerance = cr.number("tolerance", {0, 1e6, false, false}, 0.0);
+      // Absent: the approximate model is measured, not judged (0 would read as "exact agreement").
+      chk.tolerance = cr.number("tolerance", {0, 1e6, true, false}, 0.0);
       if (m->exact && chk.tolerance > 0)
         cr.fail("tolerance", "is not allowed for an exact model (it must agree within its standard errors)");
+      for (const Check& have : k.checks)
+        if (have.table == chk.table && have.model == chk.model)
+          cr.fail("model", "\"" + chk.model + "\" is already checked on table \"" + chk.table + "\" in this case");
       cr.finish();
       k.checks.push_back(chk);
     }

@@ -34,6 +34,7 @@ struct Suite {
   std::string file, name, title;
   std::vector<std::string> files;  // this suite's file and every suite it includes
   double significance = 1e-3;  // alpha for exact models
+  bool significance_given = false;  // set in the file (an included suite must then agree)
   std::vector<Case> cases;
 };
 

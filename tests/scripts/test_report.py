@@ -140,6 +140,33 @@ def test_smallest_p_is_given_and_coloured_for_exact_models_and_their_chi2_is_not
     assert "| pass | 0.002 |" in row, row
 
 
+def test_p_colour_stays_red_at_or_below_a_large_significance(copy_of):
+    # At significance 0.45 a p of 0.43 fails: red (hue 0), not green as when green began at 0.05.
+    r = results(copy_of)
+    r["significance"] = 0.45
+    exact = next(c for case in r["cases"] for c in case["checks"] if c["exact"] and c["status"] == "pass")
+    for case in r["cases"]:
+        for c in case["checks"]:
+            if c["model"] == exact["model"]:
+                c["p_value"] = 0.43
+    with open(os.path.join(copy_of, "results.json"), "w") as f:
+        json.dump(r, f)
+    summary = render(copy_of).split('id="summary"')[1].split("<details")[0]
+    row = re.search(rf"<code>{re.escape(exact['model'])}</code></td><td>exact</td>(.*?)</tr>", summary, re.S).group(1)
+    assert re.findall(r'style="background: ([^"]*)">([^<]*)</td>', row)[0] == ("hsl(0, 70%, 82%)", "0.43"), row
+    assert "from green (&ge; 0.9)" in summary
+
+
+def test_case_names_are_quoted_in_links(copy_of):
+    # A case named a#1 links to #case-a%231 (a raw '#' or '?' cut the link short).
+    r = results(copy_of)
+    r["cases"][0]["name"] = "a#1"
+    with open(os.path.join(copy_of, "results.json"), "w") as f:
+        json.dump(r, f)
+    text = render(copy_of)
+    assert '<a href="#case-a%231">' in text and 'href="#case-a#1"' not in text
+
+
 def test_every_plot_of_a_case_is_embedded_and_figure_plots_are_indexed(copy_of):
     plots = os.path.join(copy_of, "plots")
     first = first_png(plots)
@@ -212,14 +239,23 @@ def test_plot_validation_refuses_what_is_not_a_run_in_one_line(tmp_path, content
     assert not (tmp_path / "plots").exists()
 
 
-def test_figure_index_lists_cases_and_the_figures_not_reproduced(run_dir):
+def test_figure_index_lists_cases_and_the_figures_not_reproduced(run_dir, copy_of):
     text = page(run_dir)
     index = text.split('id="figures"')[1]
     for case in results(run_dir)["cases"]:
         assert f"<h3>{html.escape(case['figure'])}</h3>" in index
         assert f'<a href="#case-{case["name"]}">' in index
     with open(os.path.join(SOURCE_DIR, "validate/figures_not_reproduced.toml"), "rb") as f:
-        missing = tomllib.load(f)["figure"]
+        listed = tomllib.load(f)
+    missing = listed["figure"]
+    # The list describes its own suite's figures: another suite's report leaves it out.
+    assert results(run_dir)["suite"] != listed["suite"]
+    assert 'id="not-reproduced"' not in text
+    r = results(copy_of)
+    r["suite"] = listed["suite"]
+    with open(os.path.join(copy_of, "results.json"), "w") as f:
+        json.dump(r, f)
+    index = render(copy_of).split('id="figures"')[1]
     table = index.split('id="not-reproduced"')[1].split("</table>")[0]
     assert table.count("<tr>") == 1 + len(missing)
     for row in missing:
@@ -433,3 +469,16 @@ def test_results_hold_each_cells_z_and_the_plots_read_it(run_dir):
             assert model.z is not None and model.z.shape == model.values.shape
             compared += 1
     assert compared >= 1
+
+
+def test_plots_refuse_tables_that_results_json_did_not_judge(copy_of):
+    # A validate run stopped after rewriting a case's tables (a full disk, Ctrl-C) leaves the old
+    # results.json beside them: its z values and verdicts are not those tables'.
+    import h5py
+    case = results(copy_of)["cases"][0]
+    with h5py.File(os.path.join(copy_of, case["tables"]), "r+") as h5:
+        h5.attrs["created"] = "2000-01-01T00:00:00Z"
+    code, _, err = run(PYTHON, os.path.join(SCRIPTS, "plot_validation.py"), copy_of, "--quiet")
+    assert code != 0 and "Traceback" not in err, err
+    assert len(err.strip().splitlines()) == 1, err
+    assert case["tables"] in err and "not the tables" in err and "2000-01-01" in err, err

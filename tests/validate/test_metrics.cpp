@@ -64,6 +64,13 @@ TEST(Metrics, GrossZeroVarianceMismatchFailsExactModels) {
   EXPECT_EQ(judge(compare({1.0, 1.0}, se, model, 32), true, 1e-3, 0).status, "FAIL");
   EXPECT_EQ(judge(compare({1.0, 0.0}, se, model, 32), true, 1e-3, 0).status, "pass");
   EXPECT_EQ(judge(compare({1.0, 0.9}, se, model, 32), true, 1e-3, 0).status, "pass");
+  // Two batches that tie by chance (small counts: 0.688 in both, the model
+  // 0.634) are no evidence: noted, not failed, below kTieBatches batches.
+  const Comparison two = compare({1.0, 0.688}, se, {1.0, 0.634}, 2);
+  EXPECT_EQ(two.gross_mismatches, 0u);
+  EXPECT_EQ(two.mismatched_exact_cells, 1u);
+  EXPECT_EQ(judge(two, true, 1e-3, 0).status, "pass");
+  EXPECT_EQ(judge(compare({1.0, 0.688}, se, {1.0, 0.634}, kTieBatches), true, 1e-3, 0).status, "FAIL");
 }
 
 TEST(Metrics, ToleranceNeedsSignal) {

@@ -28,7 +28,13 @@ const char* kUsage =
     "  dataset DATASET.toml -o DATA.h5         simulate every entry of a parameter sweep (--shard K/N)\n"
     "  merge SHARD.h5... -o DATA.h5            combine dataset shards into one file\n"
     "\n"
-    "`mcref <verb> --help` explains each verb; `mcref --version` prints the version and commit.\n";
+    "`mcref <verb> --help` explains each verb; `mcref --version` prints the version and commit.\n"
+    "Exit status: 0 done; 1 validate: a check failed; 2 bad input (nothing run, nothing written);\n"
+    "3 an error while running (a full disk, an unwritable output; no output left half-written).\n";
+
+// An error met while running (not the input's fault): exit 3, so that a
+// script can tell it from validate's failed check (1) and from bad input (2).
+constexpr int kRunError = 3;
 
 // Under MPI, an error met while checking the input joins the ranks'
 // agreement (a rank may have met it alone), and rank 0 prints the one every
@@ -46,11 +52,11 @@ int fail(int code, const char* what) {
   return code;
 }
 
-// The exit code, or 1 if what was printed on stdout could not all be written
+// The exit code, or kRunError if what was printed on stdout could not all be written
 // (a full disk, a closed pipe): `mcref info > /dev/full` must not succeed.
 int checked_stdout(int code) {
   if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return code;
-  return code ? code : fail(1, "could not write to standard output");
+  return code ? code : fail(kRunError, "could not write to standard output");
 }
 
 int run(const std::string& verb, const std::vector<std::string>& args, const std::string& command_line) {
@@ -96,6 +102,6 @@ int main(int argc, char** argv) {
   } catch (const mcref::ConfigError& e) {
     return fail(2, e.what());
   } catch (const std::exception& e) {
-    return fail(1, e.what());
+    return fail(kRunError, e.what());
   }
 }

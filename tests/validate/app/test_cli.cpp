@@ -231,6 +231,12 @@ TEST_F(Cli, ValidateCaseFilterRunsOnlyMatchingCases) {
   ASSERT_EQ(lines(none.err).size(), 1u) << none.err;
   for (const char* piece : {"--case", "nope*", "tau_a, tau_b, other"})
     EXPECT_NE(none.err.find(piece), std::string::npos) << none.err;
+  // A mistyped pattern beside one that matches is refused too (it dropped its cases silently).
+  const Result mixed = mcref("validate " + quote(path("suite.toml")) + " -o " + quote(path("out2")) +
+                             " --case tau_b --case 'zzz*' --quiet");
+  EXPECT_EQ(mixed.exit_code, 2) << mixed.err;
+  expect_one_line_error(mixed, {"--case", "'zzz*' matches no case"});
+  EXPECT_FALSE(fs::exists(path("out2")));
 }
 
 // validate reuses a case's cached tables when their simulation fingerprint
@@ -353,8 +359,8 @@ TEST_F(Cli, StdoutThatCannotBeWrittenIsAnError) {
     return shell("(" + quote(MCREF_BINARY) + " " + args + " > /dev/full)");
   };
   const Result info = to_full("info " + quote(out));
-  EXPECT_EQ(info.exit_code, 1);
+  EXPECT_EQ(info.exit_code, 3);
   EXPECT_NE(info.err.find("standard output"), std::string::npos) << info.err;
-  EXPECT_EQ(to_full("--version").exit_code, 1);
+  EXPECT_EQ(to_full("--version").exit_code, 3);
   EXPECT_EQ(shell("(" + quote(MCREF_BINARY) + " info " + quote(out) + " > /dev/null)").exit_code, 0);  // (written: 0)
 }

@@ -1,6 +1,6 @@
 // What mcref promises about data (README, "Data safety"), kept under faults
 // and hostile input: an output never replaces an input, outputs are checked
-// before any work, a full disk gives one line and exit 1 (no crash) and keeps
+// before any work, a full disk gives one line and exit 3 (no crash) and keeps
 // the old file, temporaries never outlive their writer, and values that do
 // not fit their type are refused.
 #include <gtest/gtest.h>
@@ -210,27 +210,27 @@ TEST_F(Cli, FullDiskGivesOneLineAndKeepsTheOldFile) {
   ASSERT_EQ(mcref("simulate " + quote(small) + " -o " + quote(out) + " --quiet").exit_code, 0);
   const std::string good = slurp(out);
   const Result r = mcref("simulate " + quote(exp) + " -o " + quote(out) + " --quiet");
-  EXPECT_EQ(r.exit_code, 1) << r.err;  // not a crash (139), not bad input (2)
+  EXPECT_EQ(r.exit_code, 3) << r.err;  // an error while running: not a crash (139), not bad input (2)
   expect_one_line_error(r, {out});
   EXPECT_EQ(slurp(out), good) << "the old file was replaced";
   const Result v = mcref("export-vdb " + quote(exp) + " -o " + quote((disk / "g.vdb").string()) +
                          " --set geometry.lateral_voxels=128 --set geometry.depth_voxels=128");
-  EXPECT_EQ(v.exit_code, 1) << v.err;
+  EXPECT_EQ(v.exit_code, 3) << v.err;
   expect_one_line_error(v, {"g.vdb"});
   // A dataset's part, merge's output and validate's tables on the full disk.
   write("ds.toml", "[dataset]\nexperiment = \"s.toml\"\n[[parameter]]\nkey = \"geometry.layer.0.albedo\"\nvalues = [0.2, 0.4]\n");
   const Result d = mcref("dataset " + quote(path("ds.toml")) + " -o " + quote((disk / "d.h5").string()) + " --quiet");
-  EXPECT_EQ(d.exit_code, 1) << d.err;
+  EXPECT_EQ(d.exit_code, 3) << d.err;
   expect_one_line_error(d, {"d.h5.parts/entry-0.h5", "writing failed"});
   for (const char* shard : {"0/2", "1/2"})
     ASSERT_EQ(mcref("dataset " + quote(path("ds.toml")) + " -o " + quote(path(std::string("s") + shard[0] + ".h5")) +
                     " --quiet --shard " + shard).exit_code, 0);
   const Result m = mcref("merge " + quote(path("s0.h5")) + " " + quote(path("s1.h5")) + " -o " + quote((disk / "m.h5").string()));
-  EXPECT_EQ(m.exit_code, 1) << m.err;
+  EXPECT_EQ(m.exit_code, 3) << m.err;
   expect_one_line_error(m, {"m.h5", "writing failed"});
   write("suite.toml", "[suite]\nname = \"s\"\n[[case]]\nname = \"a\"\nexperiment = \"s.toml\"\n");
   const Result s = mcref("validate " + quote(path("suite.toml")) + " -o " + quote((disk / "v").string()) + " --quiet");
-  EXPECT_EQ(s.exit_code, 1) << s.err;
+  EXPECT_EQ(s.exit_code, 3) << s.err;
   expect_one_line_error(s, {"a.h5"});
   for (const auto& e : fs::recursive_directory_iterator(disk))
     EXPECT_TRUE(e.path().filename() == "t.h5" || fs::is_directory(e.path())) << "left on the full disk: " << e.path();

@@ -207,3 +207,43 @@ TEST_F(Cli, SuiteErrorsNameTheCase) {
   expect_one_line_error(r, {"s.toml: key 'case.1': case \"dense\": ", "x.toml", "geometry.tau0", "= 1.5 is out of range; allowed (0, 1)"});
   EXPECT_FALSE(fs::exists(path("out")));
 }
+
+// Suite-level mistakes are refused, naming where they are: an included
+// suite asking for another significance (every case is judged at the top
+// suite's), a missing include (with the suite that names it), `tolerance = 0`
+// (absent means measured; 0 would read as exact), the same check twice, and
+// a check's own key with its index.
+TEST_F(Cli, SuiteMistakesAreRefusedWhereTheyAre) {
+  write("x.toml", experiment());
+  const std::string inner = "[suite]\nname = \"in\"\nsignificance = 0.01\n[[case]]\nname = \"a\"\nexperiment = \"x.toml\"\n";
+  write("in.toml", inner);
+  struct Case {
+    std::string suite;
+    std::vector<std::string> pieces;
+  };
+  const std::string head = "[suite]\nname = \"s\"\n";
+  const std::string other = "[[case]]\nname = \"b\"\nexperiment = \"x.toml\"\n";
+  const std::vector<Case> cases{
+      {head + "include = [\"in.toml\"]\n" + other, {"s.toml", "suite.significance", "in.toml", "significance = 0.01"}},
+      {head + "include = [\"gone.toml\"]\n" + other, {"gone.toml", "s.toml", "suite.include"}},
+      {head + other + "[[case.check]]\ntable = \"tau_plus\"\nmodel = \"tau_plus_eq22\"\ntolerance = 0\n",
+       {"s.toml", "case.0.check.0.tolerance", "= 0"}},
+      {head + other + "[[case.check]]\ntable = \"tau_plus\"\nmodel = \"tau_plus_eq22\"\n"
+                      "[[case.check]]\ntable = \"tau_plus\"\nmodel = \"tau_plus_eq22\"\n",
+       {"s.toml", "case.0.check.1.model", "already checked on table \"tau_plus\""}},
+      {head + other + "[[case.check]]\ntable = \"tau_plus\"\nmodel = \"tau_plus_eq22\"\n"
+                      "[[case.check]]\ntable = \"tau_plus\"\nmodel = \"no_such_model\"\n",
+       {"s.toml", "case.0.check.1.model", "\"no_such_model\" is not a known model"}},
+  };
+  for (const Case& c : cases) {
+    write("s.toml", c.suite);
+    const Result r = mcref("validate " + quote(path("s.toml")) + " -o " + quote(path("out")) + " --quiet");
+    EXPECT_EQ(r.exit_code, 2) << c.suite << r.err;
+    expect_one_line_error(r, c.pieces);
+    EXPECT_FALSE(fs::exists(path("out"))) << c.suite;
+  }
+  // The same significance in both is accepted.
+  write("s.toml", head + "significance = 0.01\ninclude = [\"in.toml\"]\n" + other);
+  const Result ok = mcref("validate " + quote(path("s.toml")) + " -o " + quote(path("out")) + " --quiet");
+  EXPECT_LE(ok.exit_code, 1) << ok.err;
+}
