@@ -69,6 +69,10 @@ void read_density(TomlReader& r, SlabLayer& l) {
   if (r.has("optical_thickness")) {
     const double tau = r.number("optical_thickness", {0, 1e6, false, false});
     l.density = tau / (l.thickness * l.profile.mean());  // so that T rho mean(profile) = tau
+    // The density key's bound (a tiny thickness made rho infinite: every flight of length 0).
+    if (!(l.density <= 1e9))
+      r.fail("optical_thickness", "= " + exact_text(tau) + " over thickness " + exact_text(l.thickness) + " gives density " +
+                                      exact_text(l.density) + ", more than 1e9; use a larger thickness");
   } else {
     l.density = r.number("density", {0, 1e9, false, false}, 1.0);
     // The walk's cost grows with the optical thickness: the same bound as optical_thickness.
@@ -143,14 +147,32 @@ void read_slab_geometry(TomlReader& g, Experiment& e) {
     b.k = read_rgb(g, "substrate_k", {0, 100, false, false}, 3.9);
     if (sub == "rough_conductor") b.alpha = g.number("substrate_alpha", {0, 10, true, false});
   }
+  // Light reaches nothing under the stack but the substrate: no unscattered transmission to record.
+  if (b.kind != SlabSubstrate::Kind::kNone && g.has("delta_transmission"))
+    g.fail("delta_transmission", "has no effect over a substrate (nothing is transmitted); remove it");
   s.delta_transmission = g.boolean("delta_transmission", true);
   s.grid.openvdb = g.string("backend", {"homogeneous", "openvdb"}, std::string("homogeneous")) == "openvdb";
   s.grid.tile = g.number("tile", {0, 1e9, true, false}, 1.0);
   s.grid.lateral_voxels = static_cast<int>(g.integer("lateral_voxels", 1, 4096, 4));
   s.grid.depth_voxels = static_cast<int>(g.integer("depth_voxels", 1, 1 << 20, 32));
+  // (The grid keys serve export-vdb too, whatever the backend.)
   if (static_cast<double>(s.grid.lateral_voxels + 1) * (s.grid.lateral_voxels + 1) * (s.grid.depth_voxels + 1) *
           s.layers.size() > 2e8)
     g.fail("depth_voxels", "the grids would hold more than 2e8 voxels; use fewer lateral_voxels or depth_voxels");
+  // The voxels are linear in depth between their planes: a table's breakpoint
+  // between two planes would be cut (and the optical thickness missed).
+  for (std::size_t i = 0; i < s.layers.size(); ++i) {
+    const DensityProfile& p = s.layers[i].profile;
+    if (!s.grid.openvdb || g.has("density_vdb") || p.kind != DensityProfile::Kind::kTable) continue;
+    const int intervals = static_cast<int>(p.table.size()) - 1;
+    if (s.grid.depth_voxels % intervals != 0)
+      throw ConfigError(e.file, g.full("layer." + std::to_string(i) + ".profile_table"),
+                        "has " + std::to_string(intervals) + " intervals, which must divide geometry.depth_voxels = " +
+                            std::to_string(s.grid.depth_voxels) + " (the voxels are linear between their planes: " +
+                            "a breakpoint between two planes is cut); use depth_voxels = " +
+                            std::to_string((s.grid.depth_voxels / intervals + 1) * intervals) + ", or another multiple of " +
+                            std::to_string(intervals));
+  }
   if (g.has("density_vdb")) {
     s.grid.density_vdb = g.any_string("density_vdb");
     InputFile in{path_beside(e.file, s.grid.density_vdb), ""};

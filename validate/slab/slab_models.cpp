@@ -53,8 +53,11 @@ sggx::Layer model_layer(const SlabLayer& l, int c) {
   }
 }
 
-// Single scattering of a stack for one channel; Lambert-sphere layers (no
-// SpongeCake layer type) go through the same per-layer G terms here.
+// Single scattering of a stack for one channel, light from the top. A stack
+// without Lambert-sphere layers is SpongeCake's (Sec. 4.4); with them (no
+// SpongeCake layer type: sigma = 1, reduced phase albedo p_LS, d'Eon Eq. 1),
+// the same sum over layers (Eq. 8-16), each layer with its own sigma(w) and
+// reduced phase, attenuated by the layers crossed before and after it.
 double single_scattering(const SlabGeometry& g, int c, Vec3 wi, Vec3 wo) {
   bool generic = false;
   for (const SlabLayer& l : g.layers) generic = generic || l.phase == SlabPhase::kLambertSphere;
@@ -67,19 +70,29 @@ double single_scattering(const SlabGeometry& g, int c, Vec3 wi, Vec3 wo) {
   const bool reflection = (wi.z > 0) == (wo.z > 0);
   if (!(mi > 0) || !(mo > 0) || !(wi.z > 0)) return 0;
   const std::size_t n = g.layers.size();
-  std::vector<double> tau(n);
-  double total = 0;
-  for (std::size_t k = 0; k < n; ++k) total += tau[k] = g.layers[k].optical_thickness();
-  double f = 0, above = 0;
+  std::vector<double> tau(n), li(n), lo(n), reduced(n);  // Lambda = sigma(w)/mu per layer
   for (std::size_t k = 0; k < n; ++k) {
     const SlabLayer& l = g.layers[k];
-    const double li = 1 / mi, lo = 1 / mo;  // sigma = 1 for non-flake media
-    const double below = total - above - tau[k];
-    const double G = reflection ? sggx::reflection_G(tau[k], li, lo) : sggx::transmission_G(tau[k], li, lo);
-    const double p = l.phase == SlabPhase::kLambertSphere ? lambert_sphere::phase_function(dot(-wi, wo))
-                                                           : model_layer(l, c).phase(wi, wo);
-    f += std::exp(-above * li - (reflection ? above : below) * lo) * l.albedo[c] * p * G / (mi * mo);
-    above += tau[k];
+    tau[k] = l.optical_thickness();
+    if (l.phase == SlabPhase::kLambertSphere) {
+      li[k] = 1 / mi;
+      lo[k] = 1 / mo;
+      reduced[k] = l.albedo[c] * lambert_sphere::phase_function(dot(-wi, wo));
+    } else {
+      const sggx::Layer m = model_layer(l, c);
+      li[k] = m.sigma(wi) / mi;
+      lo[k] = m.sigma(wo) / mo;
+      reduced[k] = m.reduced_phase(wi, wo);
+    }
+  }
+  double f = 0, above_i = 0, above_o = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    double below_o = 0;  // transmission: the layers under k along wo
+    for (std::size_t j = k + 1; j < n; ++j) below_o += tau[j] * lo[j];
+    const double G = reflection ? sggx::reflection_G(tau[k], li[k], lo[k]) : sggx::transmission_G(tau[k], li[k], lo[k]);
+    if (G > 0) f += std::exp(-above_i - (reflection ? above_o : below_o)) * reduced[k] * G / (mi * mo);
+    above_i += tau[k] * li[k];
+    above_o += tau[k] * lo[k];
   }
   return f;
 }

@@ -26,7 +26,6 @@ TEST(SlabConfig, ParsesLayersSubstrateAndOptions) {
 kind = "slab"
 substrate = "rough_conductor"
 substrate_alpha = 0.2
-delta_transmission = false
 [[geometry.layer]]
 phase = "sggx_fiber"
 alpha = 0.3
@@ -46,7 +45,6 @@ density = 3
   EXPECT_EQ(e.slab.layers[0].albedo.b, 0.1);
   EXPECT_EQ(e.slab.layers[1].g, -0.3);
   EXPECT_EQ(e.slab.substrate.kind, SlabSubstrate::Kind::kRoughConductor);
-  EXPECT_FALSE(e.slab.delta_transmission);
   EXPECT_FALSE(e.isotropic);  // horizontal fibres
   EXPECT_EQ(e.measures[0].phi_bins, 36);
 }
@@ -80,4 +78,26 @@ TEST(SlabConfig, ErrorsNameKeyAndRange) {
   EXPECT_NE(error_of(head + "[[geometry.layer]]\nphase = \"sggx_surface\"\nalpha = 0.5\norientation = [0, 0, 0]\n")
                 .find("geometry.layer.0.orientation"),
             std::string::npos);
+}
+
+// Keys that cannot take effect are refused, as every inapplicable key is:
+// delta_transmission over a substrate; a
+// density from optical_thickness / thickness above the density key's 1e9
+// (a subnormal thickness made it infinite); and a profile table whose
+// breakpoints fall between voxel planes (with 3 voxels, [1, 4, 1] simulated
+// an optical thickness of 1.87 instead of 2).
+TEST(SlabConfig, KeysThatCannotTakeEffectAreRefused) {
+  const std::string head = "[geometry]\nkind = \"slab\"\n";
+  const std::string iso = "[[geometry.layer]]\nphase = \"isotropic\"\n";
+  const std::string delta = error_of(head + "substrate = \"lambertian\"\ndelta_transmission = false\n" + iso);
+  EXPECT_NE(delta.find("geometry.delta_transmission"), std::string::npos) << delta;
+  EXPECT_EQ(error_of(head + "delta_transmission = false\n" + iso), "");
+  const std::string thin = error_of(head + "[[geometry.layer]]\nphase = \"isotropic\"\nthickness = 1e-320\noptical_thickness = 1\n");
+  EXPECT_NE(thin.find("geometry.layer.0.optical_thickness"), std::string::npos) << thin;
+  EXPECT_NE(thin.find("more than 1e9"), std::string::npos) << thin;
+  const std::string table = "[[geometry.layer]]\nphase = \"isotropic\"\nprofile = \"table\"\nprofile_table = [1, 4, 1, 2]\n";
+  const std::string cut = error_of(head + "backend = \"openvdb\"\ndepth_voxels = 32\n" + table);
+  for (const char* piece : {"geometry.layer.0.profile_table", "3 intervals", "depth_voxels = 32", "use depth_voxels = 33"})
+    EXPECT_NE(cut.find(piece), std::string::npos) << piece << " missing from: " << cut;
+  EXPECT_EQ(error_of(head + "backend = \"openvdb\"\ndepth_voxels = 33\n" + table), "");
 }

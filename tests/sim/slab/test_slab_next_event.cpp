@@ -63,7 +63,7 @@ const Medium kMedia[] = {
      "[[geometry.layer]]\nphase = \"sggx_fiber\"\nalpha = 0.4\norientation_deg = [50, 20]\noptical_thickness = 1.5\n"
      "albedo = [0.95, 0.8, 0.6]\nprofile = \"linear\"\nprofile_top = 0.3\nprofile_bottom = 1.7\n"
      "[[geometry.layer]]\nphase = \"hg\"\ng = 0.5\noptical_thickness = 1.0\nalbedo = 0.9\n"
-     "profile = \"table\"\nprofile_table = [1.0, 0.2, 1.5, 0.6]\n", 0},
+     "profile = \"table\"\nprofile_table = [1.0, 0.2, 1.5, 0.6, 1.0]\n", 0},
 };
 
 // An OpenVDB slab on a unit tile of 8 x 8 voxel columns and 8 voxel intervals

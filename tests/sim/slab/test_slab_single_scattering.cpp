@@ -93,3 +93,23 @@ albedo = [0.9, 0.5, 0.2]
     EXPECT_NEAR(v[k + 2], v[k] * 0.2 / 0.9, 1e-12 * (1 + v[k]));
   }
 }
+
+// A Lambert-sphere layer (no SpongeCake layer type) over SGGX flakes: the
+// flakes keep their own sigma(w) and reduced phase F D / 4 (this stack took
+// sigma = 1 and albedo times the normalised phase: BTDF model 0.205 against
+// the simulation's 0.481).
+TEST(SlabSingleScattering, LambertSpheresOverSurfaceFlakes) {
+  check_ss(R"([geometry]
+kind = "slab"
+[[geometry.layer]]
+phase = "lambert_sphere"
+optical_thickness = 0.3
+albedo = 0.9
+[[geometry.layer]]
+phase = "sggx_surface"
+alpha = 0.3
+optical_thickness = 1.0
+albedo = 0.9
+f0 = 0.6
+)");
+}

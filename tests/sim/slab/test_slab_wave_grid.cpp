@@ -62,7 +62,7 @@ const char* const kProfiles[][2] = {
     // Henyey-Greenstein, a tabulated profile with a near-empty middle, nothing below (BTDF and its delta lobe).
     {"substrate = \"none\"\n",
      "[[geometry.layer]]\nphase = \"hg\"\ng = 0.7\noptical_thickness = 1.5\nprofile = \"table\"\n"
-     "profile_table = [2.0, 0.05, 1.0, 3.0]\nalbedo = [0.9, 0.7, 0.5]\n"},
+     "profile_table = [2.0, 0.05, 1.0, 3.0, 2.0]\nalbedo = [0.9, 0.7, 0.5]\n"},
     // Two SGGX layers (surface over fibre), each with its own profile, over a rough conductor.
     {"substrate = \"rough_conductor\"\nsubstrate_alpha = 0.3\n",
      "[[geometry.layer]]\nphase = \"sggx_surface\"\nalpha = 0.2\noptical_thickness = 0.8\nprofile = \"linear\"\n"
@@ -198,7 +198,7 @@ TEST(WaveGrid, NextEventAgreesWithScalar) {
 TEST(WaveGrid, ExactFlightsAgreeWithDeltaTracking) {
   const std::string thin =
       "substrate = \"none\"\n[[geometry.layer]]\nphase = \"isotropic\"\noptical_thickness = 3.0\n"
-      "profile = \"table\"\nprofile_table = [3.0, 0.002, 0.002, 0.002, 0.002, 0.002, 3.0]\nalbedo = 0.9\n";
+      "profile = \"table\"\nprofile_table = [3.0, 0.002, 0.002, 0.002, 0.002, 0.002, 0.002, 0.002, 3.0]\nalbedo = 0.9\n";
   const std::string slabs[] = {std::string(kProfiles[0][0]) + kProfiles[0][1],
                                std::string(kProfiles[2][0]) + kProfiles[2][1], thin};
   for (int k = 0; k < 3; ++k) {
