@@ -1,5 +1,6 @@
 #include "sim/experiment/experiment.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -143,6 +144,10 @@ Experiment parse_experiment(const std::string& text, const std::string& file,
     }
   }
   if (e.kind == "micrograin") check_micrograin_directions(e);
+  // [material] takes effect in brdf measures only (the geometric ones ignore it).
+  if (e.materials.configured &&
+      std::none_of(e.measures.begin(), e.measures.end(), [](const Measure& m) { return m.quantity == "brdf"; }))
+    throw ConfigError(file, "material", "is used by brdf measures only, and this experiment has none; remove it");
   r.finish();
   return e;
 }

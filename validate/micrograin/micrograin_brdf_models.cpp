@@ -335,6 +335,11 @@ std::string unsupported(const std::string& model, const Experiment& ex) {
   if (!ex.materials.configured) return "model " + model + " needs [material]";
   if (ex.micrograin.anisotropic() && it->second.form == Spec::Form::Lrpb23)
     return "model " + model + " is defined for isotropic grains only (beta_x = beta_y)";
+  // The grain term (LRPB23 Eq. 2, vNDF Eq. 1) is written for smooth or diffuse
+  // grains; rough-conductor grains would give 0 there, silently.
+  if (it->second.part != Spec::Part::Base && ex.materials.grain.type == MicroBrdf::Type::RoughConductor)
+    return "model " + model + " has no grain term for rough_conductor grains (black, lambertian, conductor or "
+           "diffuse_specular)";
   return "";
 }
 

@@ -35,6 +35,7 @@
 #include "models/core/vec.h"
 #include "models/micrograin/grain_field.h"
 #include "models/micrograin/visible_filling_factor.h"
+#include "sim/experiment/config_error.h"
 #include "sim/experiment/experiment.h"
 #include "sim/experiment/simulate.h"
 #include "sim/tally/table.h"
@@ -377,6 +378,33 @@ TEST(SimulateVsModel, TauPlusMatchesEq22) {
     const FieldRun r = run_measure(f, &Field::tau_plus);
     expect_matches_model(r["tau_plus"], evaluate_model("tau_plus_eq22", r["tau_plus"], r.geometry()),
                          "tau_plus vs tau_plus_eq22, " + r.label);
+  }
+}
+
+// On a small periodic tile (40 radii, beta 1: c tan(theta) + 2 reaches the
+// side at atan(38) = 88.49 deg) tau+ still matches Eq. 22 just inside that
+// limit, where no ray can meet a grain's periodic copy (seed 151, 48 batches
+// of 20000 rays); past it the direction is refused (at 89 deg, 1.4 sides, the
+// estimate was 0.678 +- 0.013 against 0.776).
+TEST(SimulateVsModel, TauPlusMatchesEq22UpToTheTileLimit) {
+  const std::string geometry = "[geometry]\nkind = \"micrograin\"\ntau0 = 0.05\nbeta = 1.0\ntile = 40\n";
+  const auto experiment = [&](const std::string& angles) {
+    return geometry + run_section(151, 48) + "[[measure]]\nquantity = \"tau_plus\"\ntheta_i_deg = " + angles +
+           "\nsamples = 20000\n";
+  };
+  const Experiment e = parse_experiment(experiment("[60, 85, 88.4]"), "test_simulate.toml");
+  SimulateOptions o;
+  o.threads = 2;
+  o.quiet = true;
+  o.keep_batch_values = true;
+  const std::vector<Table> t = simulate(e, o);
+  expect_matches_model(table(t, "tau_plus"), evaluate_model("tau_plus_eq22", table(t, "tau_plus"), e.micrograin),
+                       "tau_plus vs tau_plus_eq22, tile 40");
+  try {
+    parse_experiment(experiment("[88.6]"), "test_simulate.toml");
+    ADD_FAILURE() << "88.6 deg on a tile of 40 radii was accepted";
+  } catch (const ConfigError& err) {
+    EXPECT_NE(std::string(err.what()).find("at most 88.49"), std::string::npos) << err.what();
   }
 }
 

@@ -78,3 +78,18 @@ TEST(MicrograinBrdfConfig, BrdfNeedsMaterials) {
   const Experiment e = parse_experiment(kHead + kMeasure, "mat.toml");
   EXPECT_FALSE(e.materials.configured);
 }
+
+// [material] without a brdf measure would be ignored (tau+, G1, ... do not
+// read it): refused, so that no one believes it shaped those tables.
+TEST(MicrograinBrdfConfig, MaterialsWithoutBrdfMeasureAreRefused) {
+  const std::string material = "[material.grain]\ntype = \"lambertian\"\n[material.base]\ntype = \"lambertian\"\n";
+  try {
+    parse_experiment(kHead + material + "[[measure]]\nquantity = \"tau_plus\"\ntheta_i_deg = [0]\nsamples = 10\n", "mat.toml");
+    ADD_FAILURE() << "accepted";
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'material'"), std::string::npos) << what;
+    EXPECT_NE(what.find("brdf measures only"), std::string::npos) << what;
+  }
+  EXPECT_TRUE(parse(material).materials.configured);
+}

@@ -24,7 +24,7 @@ namespace {
 
 std::string experiment(const std::string& beta, const std::string& base = "type = \"lambertian\"\nalbedo = 0.5\n") {
   return "[geometry]\nkind = \"micrograin\"\ntau0 = 0.5\n" + beta +
-         "tile = 30\n[material.grain]\ntype = \"lambertian\"\nalbedo = 0.8\n[material.base]\n" + base +
+         "tile = 80\n[material.grain]\ntype = \"lambertian\"\nalbedo = 0.8\n[material.base]\n" + base +
          "[run]\nseed = 5\nbatches = 2\n"
          "[[measure]]\nquantity = \"p1\"\nsamples = 2000\n"
          "[[measure]]\nquantity = \"ndf\"\nsamples = 2000\n"
@@ -109,4 +109,31 @@ TEST(MicrograinUnits, RadiiPastTheRangeAreRefused) {
   for (const std::string radius : {"1e-10", "1e10", "1e18", "0"})
     EXPECT_THROW(parse_experiment(experiment("beta = 0.8\n"), "units.toml", {"geometry.radius=" + radius}), ConfigError)
         << radius;
+}
+
+// The grain's semi-axes c, r_x, r_y keep to the radius's range (beta = 1e-20
+// made c = 1e-20, and Embree asserted on the unit-space directions).
+TEST(MicrograinUnits, SemiAxesPastTheRangeAreRefused) {
+  for (const std::string beta : {"beta = 1e-20\n", "beta_x = 1e-12\nbeta_y = 1e-12\n"}) {
+    try {
+      parse_experiment(experiment(beta), "units.toml");
+      ADD_FAILURE() << beta << " accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("semi-axis c"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// The default tile (200) is held to the tile's range too: for beta_x / beta_y =
+// 6.7e3 the grains are 327 radii wide in x, so 200 cannot hold them.
+TEST(MicrograinUnits, TheDefaultTileIsCheckedToo) {
+  std::string toml = experiment("beta_x = 1.0\nbeta_y = 1.5e-4\n");
+  toml.erase(toml.find("tile = 80\n"), 10);
+  try {
+    parse_experiment(toml, "units.toml");
+    ADD_FAILURE() << "accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("geometry.tile"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("default 200"), std::string::npos) << e.what();
+  }
 }

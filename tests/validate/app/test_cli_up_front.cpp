@@ -27,6 +27,9 @@ const char* kMeasures =
 TEST_F(Cli, ImpossibleSuiteChecksAreRefusedBeforeAnyCaseIsSimulated) {
   write("x.toml", experiment("tau0 = 0.5\nbeta = 0.8\n", "", kMeasures));
   write("aniso.toml", experiment("tau0 = 0.5\nbeta_x = 0.5\nbeta_y = 1.0\n", "", kMeasures));
+  write("rough.toml", experiment("tau0 = 0.5\nbeta = 1.0\n[material.grain]\ntype = \"rough_conductor\"\npreset = \"copper\"\nalpha = 0.4\n"
+                                 "[material.base]\ntype = \"conductor\"\npreset = \"gold\"\n",
+                                 "", "quantity = \"brdf\"\ntheta_i_deg = [30]\nsamples = 200\n"));
   struct Bad {
     std::string check, experiment;
     std::vector<std::string> expected;
@@ -45,6 +48,9 @@ TEST_F(Cli, ImpossibleSuiteChecksAreRefusedBeforeAnyCaseIsSimulated) {
       // A model whose assumption the case breaks: anisotropic grains.
       {"table = \"g1\"\nmodel = \"g1_smith_series_n4\"\n", "aniso.toml",
        {"s.toml", "case.1.check.0", "g1_smith_series_n4", "isotropic grains only"}},
+      // Rough-conductor grains, for which the grain term has no form (it gave 0).
+      {"table = \"brdf_order1_grain\"\nmodel = \"gdist_grain_union\"\n", "rough.toml",
+       {"s.toml", "case.1.check.0", "gdist_grain_union", "no grain term for rough_conductor grains"}},
   };
   for (const Bad& b : bad) {
     write("s.toml", suite(b.check, b.experiment));
@@ -172,7 +178,7 @@ TEST_F(Cli, EveryParameterValueIsCheckedBeforeAnyEntry) {
   // The same datasets with the bad value mended run (entry 0 is fine in each).
   for (const Case& c : cases) {
     std::string parameters = c.parameters;
-    for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{{"1.25", "0.75"}, {"2.5", "0.25"}, {"-0.1", "0.1"}, {"200.0", "50.0"}})
+    for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{{"1.25", "0.75"}, {"2.5", "0.25"}, {"-0.1", "0.1"}, {"200.0", "20.0"}})
       if (const auto at = parameters.find(from); at != std::string::npos) parameters.replace(at, from.size(), to);
     write("ds.toml", "[dataset]\nexperiment = \"base.toml\"\nentries = 1\nseed = 5\n\n[[parameter]]\n" + parameters);
     const Result r = mcref("dataset " + quote(path("ds.toml")) + " -o " + quote(path("d.h5")) + " --threads 1 --quiet " + c.options);
