@@ -2,6 +2,8 @@
 spongecake_*.toml; README "Reference datasets") as a fit.Material: its layers
 (from the entry's effective experiment config) and the simulated
 multiple-scattering part (orders >= 2) of its reflection and transmission tables.
+Entries simulated with another estimator than the analog one (geometry.estimator) are
+refused: the standard error of the multiple scattering assumes each path leaves once.
 
 The multiple-scattering part of a table <t> (brdf, brdf_btdf) is taken from the
 entry's tables, first match wins:
@@ -149,11 +151,13 @@ def layers_from_config(config_text, where, for_network=False):
 
 def _multiple_scattering(entry, base, where):
     """(ms, its standard error, the total or None, the group giving the axes). The standard
-    error of total - order 1 is sqrt(max(se_total^2 - se_order1^2, 0)): each path leaves
-    once, so its order-1 and higher-order scores never share a cell, and the covariance
-    of the two estimates is the variance of the order-1 one (up to a mean-product term
-    of relative size 1/paths). Both standard errors are estimated from the table's few
-    batches, so this one is low on average: errors.py's "noise" is a lower bound."""
+    error of total - order 1 is sqrt(max(se_total^2 - se_order1^2, 0)): under the analog
+    estimator (the only one _open_entry lets through; the next-event ones score a path at
+    several orders) each path leaves once, so its order-1 and higher-order scores never
+    share a cell, and the covariance of the two estimates is the variance of the order-1
+    one (up to a mean-product term of relative size 1/paths). Both standard errors are
+    estimated from the table's few batches, so this one is low on average: errors.py's
+    "noise" is a lower bound."""
     names = set(entry.keys())
     value = lambda n: np.asarray(entry[n]["value"], dtype=np.float64)  # noqa: E731
     se = lambda n: np.asarray(entry[n]["stderr"], dtype=np.float64)  # noqa: E731
@@ -206,8 +210,13 @@ def _open_entry(f, path, index, for_network=False):
     if "config" not in entry.attrs:
         raise ValueError(f"{where}: no config attribute (not an entry of an mcref dataset file)")
     config = entry.attrs["config"]
-    return entry, layers_from_config(config.decode() if isinstance(config, bytes) else config, where,
-                                     for_network), where
+    config = config.decode() if isinstance(config, bytes) else config
+    layers = layers_from_config(config, where, for_network)
+    estimator = tomllib.loads(config)["geometry"].get("estimator", "analog")
+    if estimator != "analog":
+        raise ValueError(f"{where}: geometry.estimator = {estimator!r} (allowed: 'analog', the default: the standard "
+                         "error of the multiple scattering assumes each path leaves once, _multiple_scattering)")
+    return entry, layers, where
 
 
 def check_entry(path, index, for_network=False):

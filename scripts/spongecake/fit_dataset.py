@@ -2,9 +2,9 @@
 """Per-material fits over a whole SpongeCake dataset (Wang et al. 2022, Sec. 5): fits
 every entry (fit.fit, several seeded starts), stores the fitted lobe parameters and
 losses in HDF5 with the dataset's provenance, and prints the distribution of the
-error (errors.py): the two lobes at their per-material optimum (the floor of the
-form), the Lambertian lobe alone, and no multiple-scattering term, by flake type,
-albedo and thickness.
+error (errors.py): the two lobes at their per-material fit (the best the optimiser
+found: an upper bound on the form's floor, fit.py), the Lambertian lobe alone, and no
+multiple-scattering term, by flake type, albedo and thickness.
 
   /usr/bin/python3 scripts/spongecake/fit_dataset.py DATA.h5 -o FITS.h5 [--entries 0,1,...]
       [--starts 3] [--seed 1] [--iterations 10] [--split R,T] [--quiet]
@@ -22,6 +22,7 @@ Written to a temporary file and renamed into place once every fit is done; -o is
 against the input before any fit (not the dataset, through links or '..' either).
 """
 import argparse
+import collections
 import math
 import os
 import sys
@@ -138,6 +139,9 @@ def main(argv=None):
             entries = available if a.entries is None else [int(v) for v in a.entries.split(",")]
         except ValueError:
             raise ValueError(f"--entries = {a.entries!r}: expected comma-separated entry indices")
+        repeated = sorted(i for i, n in collections.Counter(entries).items() if n > 1)
+        if repeated:
+            raise ValueError(f"--entries = {a.entries!r}: {repeated} given more than once (allowed: each entry once)")
         missing = [i for i in entries if i not in available]
         if missing:
             raise ValueError(f"{a.data}: --entries {missing} not in the file (entries: {available[:10]}...)")

@@ -25,8 +25,11 @@ Weights file (HDF5, mcref_format = "mcref-spongecake-network", format_version = 
 datasets input_mean, input_std [12 L], linear<j>/weight [out, in] and linear<j>/bias
 [out] for j = 0..3 (torch.nn.Linear, y = x W^T + b), history/{train_loss, val_loss}
 [epochs] and validation_index; attributes layers (L), hidden, activation,
-inputs, outputs, alpha_range, thickness_range, split, the training settings and the
-dataset's provenance (dataset, dataset_sha256, ...).
+inputs, outputs, alpha_range, thickness_range (the lobes' output ranges), split, the
+training settings, train_alpha_range and train_optical_thickness_range ([L, 2]: per
+layer, the smallest and largest alpha and T rho of the training entries; predict.py
+refuses a stack outside them unless --extrapolate; files written before them have
+neither and are not checked) and the dataset's provenance (dataset, dataset_sha256, ...).
 """
 import math
 

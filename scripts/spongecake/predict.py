@@ -8,9 +8,13 @@ layer at the layer's own density, as torch_model.multiple_scattering_lobes and
 mcref.sggx.spongecake_ms_bsdf apply it; "optical_thickness" is T' rho, what the network
 predicts (network.py): a layer given as (T, rho) or as (T/c, c rho) is the same medium
 and gets the same BSDF. Keys the lobes cannot represent (density_vdb, depth profiles,
-other phase functions, a substrate) are refused, naming the key.
+other phase functions, a substrate) are refused, naming the key. So is a layer whose
+alpha or optical thickness T rho lies outside the range of the network's training entries
+(the weights file's train_alpha_range and train_optical_thickness_range, per layer; files
+written before train.py stored them are not checked): the network would extrapolate.
+--extrapolate predicts anyway.
 
-  /usr/bin/python3 scripts/spongecake/predict.py NET.h5 EXPERIMENT.toml
+  /usr/bin/python3 scripts/spongecake/predict.py NET.h5 EXPERIMENT.toml [--extrapolate]
 """
 import argparse
 import json
@@ -21,11 +25,29 @@ if __package__ in (None, ""):
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from spongecake import dataset, network  # noqa: E402
 
+RANGES = (("train_alpha_range", "alpha", lambda l: l.alpha),
+          ("train_optical_thickness_range", "T rho (optical thickness)", lambda l: l.thickness * l.density))
+
+
+def check_training_range(layers, attrs, experiment, weights):
+    """Refuses a layer outside the ranges the network was trained on (attributes RANGES of the
+    weights file, [L, 2] each; absent in older files: not checked), naming the layer and value."""
+    for attr, name, value in RANGES:
+        if attr not in attrs:
+            continue
+        for k, (l, (lo, hi)) in enumerate(zip(layers, [tuple(map(float, r)) for r in attrs[attr]])):
+            v = value(l)
+            if not lo <= v <= hi:
+                raise ValueError(f"{experiment}: geometry.layer.{k} {name} = {v:.6g} (allowed: [{lo:.6g}, {hi:.6g}], "
+                                 f"the range of the training entries of {weights}; --extrapolate predicts anyway)")
+
 
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("weights", help="network weights (train.py)")
     p.add_argument("experiment", help="experiment file whose geometry.layer is the stack")
+    p.add_argument("--extrapolate", action="store_true",
+                   help="predict for alpha or T rho outside the training entries' ranges")
     a = p.parse_args(argv)
     try:
         net, attrs = network.load(a.weights)
@@ -38,6 +60,8 @@ def main(argv=None):
         if len(layers) != net.n_layers:
             raise ValueError(f"{a.experiment}: geometry.layer has {len(layers)} layers; the network of {a.weights} "
                              f"takes {net.n_layers}")
+        if not a.extrapolate:
+            check_training_range(layers, attrs, a.experiment, a.weights)
     except (OSError, KeyError, ValueError) as e:
         print(f"predict: {e}", file=sys.stderr)
         return 2

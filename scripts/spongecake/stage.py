@@ -6,7 +6,7 @@ gives (validate/spongecake_stage.toml), into OUTDIR:
   1. the datasets (`mcref dataset ... --lean`), one per [[network]] and [[materials]];
   2. per-material fits (fit_dataset.py): a network's held-out entries (index % 10 == 9)
      or all its entries (fit = "all"), and every entry of a materials set;
-  3. one network per [[network]] (train.py, with the fits as the floor);
+  3. one network per [[network]] (train.py, its report beside the fits' errors);
   4. figures and per-entry errors (figures.py --summary): a network's held-out entries,
      and a materials set's entries, unseen by the network it names;
   5. OUTDIR/summary.json: the scale each set ran at, one row per entry with one number
@@ -17,10 +17,17 @@ A step is skipped when its output is up to date: `mcref dataset` itself keeps a 
 that holds the same dataset from the same simulation fingerprint (a stale one is
 removed and simulated again); a Python step is skipped when OUTDIR/stage.json records
 it with the same key (the SHA-256 of its command line, of its input files and of the
-scripts/spongecake/*.py sources but this one) and its outputs are unchanged. Steps 2-4 run as
-separate processes, --jobs at once (one torch thread each, so the results do not
-depend on it). summary.json is removed first and written last, so a failed stage
-leaves none. Progress lines go to stderr unless --quiet; one summary line at the end.
+scripts/spongecake/*.py sources but this one) and its outputs are unchanged; each step is
+recorded there as soon as it finishes, so an interrupted stage runs again only the steps
+it had not finished. Steps 2-4 run as separate processes, --jobs at once (one torch
+thread each, so the results do not depend on it). summary.json is removed first and
+written last, so a failed stage leaves none. Progress lines go to stderr unless --quiet;
+one summary line at the end.
+
+Before anything runs, the stage file is checked whole, and each dataset file as `mcref
+dataset` checks it (nothing simulated): a [[network]] dataset needs at least 10 entries
+(held-out and training ones), a [[materials]] dataset must not be its network's, and
+`labels` gives one label per entry.
 
   /usr/bin/python3 scripts/spongecake/stage.py STAGE.toml OUTDIR --mcref BINARY
       [--threads N] [--jobs N] [--quiet]
@@ -36,6 +43,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import tomllib
 
@@ -53,6 +61,8 @@ NETWORK_KEYS = {"name": str, "dataset": str, "fit": str, "starts": int, "iterati
                 "cells": int}
 MATERIALS_KEYS = {"name": str, "dataset": str, "network": str, "starts": int, "iterations": int, "labels": list,
                   "figure": str}
+INT_MAX = 2 ** 63 - 1  # the steps store these settings as HDF5 attributes (int64)
+MIN_NETWORK_ENTRIES = 10  # entries 0-9: one held out (index % 10 == 9), nine to train on
 
 
 class StageError(Exception):
@@ -72,6 +82,10 @@ def read_stage(path):
     seed = cfg.get("seed", 1)
     if not isinstance(seed, int) or isinstance(seed, bool) or not fit.SEED_RANGE[0] <= seed <= fit.SEED_RANGE[1]:
         raise StageError(f"{path}: seed = {seed!r} (allowed: an integer in [0, 2^64 - 1], what torch takes)")
+    for kind in ("network", "materials"):
+        v = cfg.get(kind, [])
+        if not isinstance(v, list) or not all(isinstance(t, dict) for t in v):
+            raise StageError(f"{path}: {kind} = {v!r} (allowed: tables [[{kind}]])")
     names = set()
 
     def check(kind, i, t, keys, required):
@@ -83,6 +97,10 @@ def read_stage(path):
                 raise StageError(f"{where}.{k} = {v!r}: expected {keys[k].__name__}")
             if keys[k] is int and v < 1:
                 raise StageError(f"{where}.{k} = {v}: allowed >= 1")
+            if keys[k] is int and v > INT_MAX:
+                raise StageError(f"{where}.{k} = {v}: allowed <= 2^63 - 1")
+            if k == "labels" and not all(isinstance(x, str) for x in v):
+                raise StageError(f"{where}.labels = {v!r}: expected strings")
         for k in required:
             if k not in t:
                 raise StageError(f"{where}.{k}: required")
@@ -110,6 +128,55 @@ def read_stage(path):
     if not nets:
         raise StageError(f"{path}: network: at least one [[network]] is required")
     return seed, nets, mats
+
+
+def read_dataset_file(path):
+    """(entries, identity) of a dataset file, read after `mcref dataset` has checked it. Entries
+    (README, "Reference datasets"): `entries` (1) per point of the grid of the parameters given
+    by `values`. Identity: the SHA-256 of the file and of its base experiment (two files with
+    both the same make the same dataset)."""
+    with open(path, "rb") as f:
+        cfg = tomllib.load(f)
+    n = cfg["dataset"].get("entries", 1)
+    for p in cfg.get("parameter", []):
+        if "values" in p:
+            n *= len(p["values"])
+    experiment = os.path.join(os.path.dirname(os.path.abspath(path)), cfg["dataset"]["experiment"])
+    return n, (sha256_file(path), sha256_file(experiment))
+
+
+def check_datasets(path, mcref, nets, mats):
+    """Before anything is simulated: each dataset file as `mcref dataset` checks it (--stop-after
+    0 into a temporary directory: every parameter value, nothing simulated), a network's dataset
+    with held-out and training entries, a materials set's dataset not its network's, one label per
+    entry. One-line errors name the stage file, the key and the value."""
+    identity = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for kind, sets in (("network", nets), ("materials", mats)):
+            for i, t in enumerate(sets):
+                where = f"{path}: {kind}.{i}.dataset = {t['dataset']!r}"
+                p = subprocess.run([mcref, "dataset", t["dataset"], "-o", os.path.join(tmp, f"{kind}{i}.h5"),
+                                    "--stop-after", "0", "--quiet", "--threads", "1"], capture_output=True, text=True)
+                if p.returncode != 0:
+                    raise StageError(f"{where}: {(p.stderr.strip().splitlines() or [f'exit {p.returncode}'])[-1]}")
+                try:
+                    t["entries"], identity[t["name"]] = read_dataset_file(t["dataset"])
+                except (OSError, tomllib.TOMLDecodeError, KeyError, TypeError, AttributeError) as e:
+                    raise StageError(f"{where}: cannot read its entry count ({e})")
+    for i, t in enumerate(nets):
+        if t["entries"] < MIN_NETWORK_ENTRIES:
+            raise StageError(f"{path}: network.{i}.dataset = {t['dataset']!r}: {t['entries']} entries (allowed: at "
+                             f"least {MIN_NETWORK_ENTRIES}: entries with index % 10 == 9 are held out and judged, the "
+                             "others train)")
+    by_name = {t["name"]: t for t in nets}
+    for i, t in enumerate(mats):
+        own = by_name[t["network"]]["dataset"]
+        if files.same_file(t["dataset"], own) or identity[t["name"]] == identity[t["network"]]:
+            raise StageError(f"{path}: materials.{i}.dataset = {t['dataset']!r}: the dataset of its network "
+                             f"{t['network']!r} (allowed: a dataset the network never saw)")
+        if "labels" in t and len(t["labels"]) != t["entries"]:
+            raise StageError(f"{path}: materials.{i}.labels: {len(t['labels'])} labels (allowed: one per entry of "
+                             f"{t['dataset']}, {t['entries']})")
 
 
 def sha256_file(path):
@@ -143,6 +210,7 @@ class Stage:
             self.manifest = {}
         self.code = code_hash()
         self.times = {}
+        self.lock = threading.Lock()  # the manifest, written by the steps' threads
 
     def log(self, text):
         if not self.quiet:
@@ -208,12 +276,19 @@ class Stage:
             return done["stdout"], False
         self.log(f"{label}: running")
         stdout = self.run(label, cmd)
-        self.manifest[label] = {"key": key, "outputs": {os.path.basename(p): sha256_file(p) for p in outputs},
-                                "times": self.times[label], "stdout": stdout}
+        with self.lock:  # recorded at once: a stage interrupted later does not run this step again
+            self.manifest[label] = {"key": key, "outputs": {os.path.basename(p): sha256_file(p) for p in outputs},
+                                    "times": self.times[label], "stdout": stdout}
+            self.write_manifest()
         self.log(f"{label}: done in {self.times[label]['wall_s']:.0f} s")
         return stdout, True
 
     def save_manifest(self):
+        with self.lock:
+            self.write_manifest()
+
+    def write_manifest(self):
+        """stage.json, whole (a temporary file renamed into place); the caller holds self.lock."""
         tmp = f"{self.manifest_path}.tmp.{os.getpid()}"
         with open(tmp, "w") as f:
             json.dump(self.manifest, f, indent=1)
@@ -299,6 +374,7 @@ def main(argv=None):
             raise StageError(f"{a.out}: exists and is not a directory (allowed: a directory, or a new name)")
         check_outputs(out, nets + mats, [("STAGE.toml", a.stage), ("--mcref", a.mcref)] +
                       [(f"{t['name']}.dataset", t["dataset"]) for t in nets + mats])
+        check_datasets(a.stage, a.mcref, nets, mats)
         os.makedirs(out, exist_ok=True)
     except StageError as e:
         print(f"stage: {e}", file=sys.stderr)

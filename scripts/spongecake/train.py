@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Trains SpongeCake's parameter-mapping network (network.py; Wang et al. 2022, Sec. 5)
 on an mcref dataset of one layer count, writes its weights (HDF5) and reports the
-held-out error beside the per-material fit's floor and the baselines (errors.py).
+held-out error beside the per-material fit's and the baselines' (errors.py).
 
 As in the paper: loss = MAE between the simulated multiple-scattering part (orders
 >= 2, every cell and channel of reflection and transmission) and the lobes
@@ -21,8 +21,8 @@ moves (validate/FINDINGS.md): give it hundreds of epochs.
 
   /usr/bin/python3 scripts/spongecake/train.py DATA.h5 -o NET.h5 [--epochs 50] [--seed 1]
       [--lr 1e-3] [--batch 32] [--cells K] [--split R,T] [--fits FITS.h5] [--stream] [--quiet]
---fits: a fit_dataset.py file of the same dataset and Lambertian split, for the floor on
-the held-out entries. Every input and output is checked before the training starts.
+--fits: a fit_dataset.py file of the same dataset and Lambertian split, for the fit's error
+on the held-out entries. Every input and output is checked before the training starts.
 """
 import argparse
 import os
@@ -35,6 +35,9 @@ if __package__ in (None, ""):
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from spongecake import dataset, errors, files, fit, fit_dataset, network  # noqa: E402
 from spongecake import torch_model as tm  # noqa: E402
+
+
+INT_MAX = 2 ** 63 - 1
 
 
 def is_validation(index):
@@ -165,14 +168,14 @@ def main(argv=None):
     p.add_argument("--batch", type=int, default=32)
     p.add_argument("--cells", type=int, help="random cells per mini-batch (default: every cell)")
     p.add_argument("--split", type=fit.parse_split, default=(1.0, 1.0), help="Lambertian split R,T (default 1,1)")
-    p.add_argument("--fits", help="fit_dataset.py file of the same dataset (the floor on the held-out entries)")
+    p.add_argument("--fits", help="fit_dataset.py file of the same dataset (the fit's error on the held-out entries)")
     p.add_argument("--stream", action="store_true", help="read mini-batches from the file (less memory, same results)")
     p.add_argument("-q", "--quiet", action="store_true")
     a = p.parse_args(argv)
     try:
         for key, v in (("--epochs", a.epochs), ("--batch", a.batch), ("--cells", 1 if a.cells is None else a.cells)):
-            if v < 1:
-                raise ValueError(f"{key} = {v} (allowed: >= 1)")
+            if not 1 <= v <= INT_MAX:  # the weights file stores them as int64 attributes
+                raise ValueError(f"{key} = {v} (allowed: an integer in [1, 2^63 - 1])")
         if not (a.lr > 0 and np.isfinite(a.lr)):
             raise ValueError(f"--lr = {a.lr} (allowed: a finite number > 0)")
         fit.check_seed(a.seed)
@@ -191,6 +194,11 @@ def main(argv=None):
     train_rows = [r for r, i in enumerate(indices) if not is_validation(i)]
     net, history = train(stacks, wi, wo, ms, train_rows, val_rows, a.epochs, a.seed, a.lr, a.batch, a.cells, a.split,
                          None if a.quiet else lambda s: print(s, flush=True))
+    per_layer = lambda f: np.asarray([[f(l) for l in stacks[r]] for r in train_rows])  # noqa: E731  (entries, L)
+    for key, f in (("train_alpha_range", lambda l: l.alpha), ("train_optical_thickness_range",
+                                                             lambda l: l.thickness * l.density)):
+        v = per_layer(f)
+        attrs[key] = np.stack([v.min(axis=0), v.max(axis=0)], axis=-1)  # [L, 2]: what predict.py accepts
     attrs.update({"seed": a.seed, "epochs": a.epochs, "lr": a.lr, "batch": a.batch,
                   "cells": -1 if a.cells is None else a.cells, "split": list(a.split), "optimizer": "adam",
                   "loss": "MAE over every cell and channel (reflection and transmission), orders >= 2",

@@ -153,3 +153,75 @@ def test_stage_outputs_are_checked_against_its_inputs(tiny):
     refused(run("stage.py", str(d / "seed.toml"), str(d / "never"), "--mcref", BINARY, "--quiet"), "seed", SEED)
     (d / "seed.toml").unlink()
     assert snapshot(d) == before
+
+
+def test_repeated_entries_and_counts_the_weights_file_cannot_store_are_refused(tiny):
+    # fit_dataset.py fitted an entry given twice twice; train.py took --cells (or --batch)
+    # above 2^63 - 1, trained, and crashed writing the weights.
+    d = tiny
+    before = snapshot(d)
+    data = str(d / "tiny.h5")
+    refused(run("fit_dataset.py", data, "-o", str(d / "never.h5"), "--entries", "9,3,9", "--starts", "1",
+                "--iterations", "1"), "--entries = '9,3,9'", "[9] given more than once")
+    for key in ("--cells", "--batch"):
+        refused(run("train.py", data, "-o", str(d / "never.h5"), "--epochs", "1", key, SEED), f"{key} = {SEED}",
+                "[1, 2^63 - 1]")
+    assert snapshot(d) == before
+
+
+ESTIMATOR_DATASET = """
+[dataset]
+experiment = "base_nee.toml"
+tables = ["brdf", "brdf_btdf", "brdf_order1_volume", "brdf_btdf_order1_volume"]
+[[parameter]]
+key = "geometry.layer.0.alpha"
+values = [0.3, 0.5]
+"""
+
+
+def test_a_dataset_of_another_estimator_is_refused(tiny):
+    # The noise column's standard error of total - order 1 holds for the analog estimator
+    # only (each path leaves once); the reader took next-event datasets without a word.
+    from test_pipeline import BASE
+    d = tiny
+    (d / "base_nee.toml").write_text(BASE.replace('kind = "slab"', 'kind = "slab"\nestimator = "next_event_mis"')
+                                     .replace("samples = 2000", "samples = 200"))
+    (d / "nee.toml").write_text(ESTIMATOR_DATASET)
+    nee = d / "nee.h5"
+    p = subprocess.run([BINARY, "dataset", str(d / "nee.toml"), "-o", str(nee), "--quiet", "--threads", "1"],
+                       capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    before = snapshot(d)
+    for script, extra in (("fit_dataset.py", ["--starts", "1", "--iterations", "1"]), ("train.py", ["--epochs", "1"])):
+        refused(run(script, str(nee), "-o", str(d / "never.h5"), *extra), "nee.h5", "entry 0",
+                "geometry.estimator = 'next_event_mis'", "allowed: 'analog'")
+    assert snapshot(d) == before
+
+
+def test_predict_refuses_stacks_outside_the_training_ranges(tiny):
+    # predict.py extrapolated silently: net.h5 was trained on alpha in [0.2, 1] (sampled) and
+    # T rho = 2 (tiny.toml); the weights file now holds those ranges per layer.
+    from test_pipeline import BASE
+    from spongecake import network, train
+    d = tiny
+    _, attrs = network.load(str(d / "net.h5"))
+    indices, stacks, _, _ = train.check_dataset(str(d / "tiny.h5"))
+    alphas = [s[0].alpha for i, s in zip(indices, stacks) if not train.is_validation(i)]
+    assert attrs["train_alpha_range"].tolist() == [[min(alphas), max(alphas)]]
+    assert attrs["train_optical_thickness_range"].tolist() == [[2.0, 2.0]]
+    inside = BASE.replace("alpha = 0.5", f"alpha = {0.5 * (min(alphas) + max(alphas))}")
+    cases = {"inside": inside, "alpha": inside.replace(f"alpha = {0.5 * (min(alphas) + max(alphas))}", "alpha = 0.1"),
+             "rho": inside.replace("thickness = 2.0", "thickness = 2.0\ndensity = 1.5"),
+             "tau": inside.replace("thickness = 2.0", "thickness = 4.0\noptical_thickness = 2.0")}
+    for name, text in cases.items():
+        (d / f"{name}.toml").write_text(text)
+    weights = str(d / "net.h5")
+    assert run("predict.py", weights, str(d / "inside.toml")).returncode == 0
+    assert run("predict.py", weights, str(d / "tau.toml")).returncode == 0  # T rho = 2, the training value
+    refused(run("predict.py", weights, str(d / "alpha.toml")), "alpha.toml", "geometry.layer.0 alpha = 0.1",
+            f"[{min(alphas):.6g}, {max(alphas):.6g}]", "net.h5", "--extrapolate")
+    refused(run("predict.py", weights, str(d / "rho.toml")), "rho.toml", "geometry.layer.0 T rho", "= 3 ",
+            "[2, 2]")
+    for name in ("alpha", "rho"):
+        p = run("predict.py", weights, str(d / f"{name}.toml"), "--extrapolate")
+        assert p.returncode == 0 and "alpha" in p.stdout, p.stderr

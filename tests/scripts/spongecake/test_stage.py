@@ -10,7 +10,7 @@ import subprocess
 
 import pytest
 
-from test_pipeline import BINARY, run, tiny_dir
+from test_pipeline import BINARY, DATASET, run, tiny_dir
 
 MATERIALS = """
 [dataset]
@@ -102,8 +102,29 @@ def test_second_run_is_up_to_date_and_a_change_reruns_what_depends_on_it(tiny_st
     assert summary(d)["sets"][0]["scale"]["epochs"] == 4
 
 
+NET = "[[network]]\nname = 'a'\ndataset = 'tiny.toml'\nepochs = 1\n"
+MAT = "[[materials]]\nname = 'b'\ndataset = 'materials.toml'\nnetwork = 'a'\n"
+
+
+# The checks of the whole stage file and of its datasets before anything runs: a TOML
+# type that is not a table array gave a traceback; a dataset with no held-out entries,
+# a materials set on its network's own dataset and a cells count the weights file cannot
+# store failed after simulating, fitting or training; labels of the wrong count passed.
 @pytest.mark.parametrize("text, message", [
     ("seed = -1\n", "seed = -1"),
+    ("network = 3\n", "network = 3 (allowed: tables [[network]])"),
+    ("network = [1]\n", "network = [1] (allowed: tables [[network]])"),
+    ("materials = 'x'\n" + NET, "materials = 'x' (allowed: tables [[materials]])"),
+    (NET.replace("tiny.toml", "few.toml"), "network.0.dataset"),
+    (NET.replace("tiny.toml", "few.toml"), "9 entries (allowed: at least 10"),
+    (NET + MAT.replace("materials.toml", "tiny.toml"), "materials.0.dataset"),
+    (NET + MAT.replace("materials.toml", "tiny.toml"), "the dataset of its network 'a'"),
+    (NET + MAT.replace("materials.toml", "copy.toml"), "the dataset of its network 'a'"),
+    (NET + MAT + "labels = ['x']\n", "materials.0.labels: 1 labels (allowed: one per entry"),
+    (NET + MAT + "labels = [1, 2]\n", "materials.0.labels = [1, 2]: expected strings"),
+    (NET + "cells = 100000000000000000000\n", "network.0.cells = 100000000000000000000: allowed <= 2^63 - 1"),
+    (NET.replace("tiny.toml", "badrange.toml"), "network.0.dataset"),
+    (NET.replace("tiny.toml", "badrange.toml"), "geometry.layer.0.alpha"),
     ("[[network]]\nname = 'a'\ndataset = 'tiny.toml'\n", "network.0.epochs: required"),
     ("[[network]]\nname = 'a'\ndataset = 'missing.toml'\nepochs = 1\n", "no such file"),
     ("[[network]]\nname = 'a'\ndataset = 'tiny.toml'\nepochs = 0\n", "network.0.epochs = 0: allowed >= 1"),
@@ -113,6 +134,9 @@ def test_second_run_is_up_to_date_and_a_change_reruns_what_depends_on_it(tiny_st
 ])
 def test_bad_stage_file(tiny_stage, tmp_path, text, message):
     d, _ = tiny_stage
+    (d / "few.toml").write_text(DATASET.replace("entries = 10", "entries = 9"))
+    (d / "copy.toml").write_text(DATASET)
+    (d / "badrange.toml").write_text(DATASET.replace("range = [0.2, 1.0]", "range = [-0.2, 1.0]"))
     bad = d / "bad.toml"
     bad.write_text(text)
     p = stage(bad, tmp_path / "out", "--mcref", BINARY)
@@ -139,3 +163,29 @@ def test_stale_parts_are_replaced_and_other_errors_leave_files_alone(tmp_path_fa
     with pytest.raises(StageError):
         s.dataset("x", str(d / "tiny.toml"))
     assert (out / "x.h5.parts").read_text() == "not a directory"
+
+
+def test_each_step_is_recorded_as_it_finishes(tmp_path):
+    # stage.json was written at the end of each phase only: a stage interrupted (Ctrl-C,
+    # SIGTERM) after a network had finished trained it again. Now each step is recorded
+    # at once, also when the steps of a phase finish on several threads.
+    import concurrent.futures
+    import sys
+
+    from spongecake.stage import Stage
+    s = Stage(str(tmp_path), BINARY or "mcref", 1, 2, True)
+
+    def cmd(k):
+        return [sys.executable, "-c", f"open({str(tmp_path / f'{k}.txt')!r}, 'w').write('{k}')"]
+
+    def step(k):
+        s.cached(f"step {k}", cmd(k), [], [str(tmp_path / f"{k}.txt")])
+        with open(tmp_path / "stage.json") as f:
+            assert f"step {k}" in json.load(f)  # on disk before the phase ends
+
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        list(pool.map(step, range(8)))
+    with open(tmp_path / "stage.json") as f:
+        assert sorted(json.load(f)) == sorted(f"step {k}" for k in range(8))
+    again = Stage(str(tmp_path), BINARY or "mcref", 1, 2, True)  # a new run finds them up to date
+    assert all(again.cached(f"step {k}", cmd(k), [], [str(tmp_path / f"{k}.txt")]) == ("", False) for k in range(8))
