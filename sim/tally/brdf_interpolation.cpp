@@ -67,7 +67,21 @@ BrdfInterpolation::BrdfInterpolation(const Table& t, const std::string& file) {
   if (to_.size() < 8) refuse("is too coarse for export: at least 8 theta_o bins are needed (has " + std::to_string(to_.size()) + ")");
   if (ph_.size() < 8 || t.axes[3].values.back() - t.axes[3].values.front() < kPi - 1e-9)
     refuse("is too coarse for export: at least 8 phi bins over [0, pi] are needed (has " + std::to_string(ph_.size()) + ")");
+  // MERL's phi_d folds into [0, pi]: an axis elsewhere (e.g. [-pi, 0]) would be
+  // held at its last value everywhere.
+  if (!(std::fabs(t.axes[3].values.front()) <= 1e-9 && std::fabs(t.axes[3].values.back() - kPi) <= 1e-9))
+    refuse("has phi over [" + deg(t.axes[3].values.front()) + ", " + deg(t.axes[3].values.back()) +
+           "] deg; MERL needs [0, 180] deg");
   values_ = t.values();
+  // A NaN (a cell some batch left empty), infinite or negative value would be
+  // spread over the MERL cells around it (MERL reads negative as below the horizon).
+  for (std::size_t n = 0; n < values_.size(); ++n)
+    if (!(values_[n] >= 0 && std::isfinite(values_[n]))) {
+      char v[32];
+      std::snprintf(v, sizeof v, "%.17g", values_[n]);
+      refuse("cell " + std::to_string(n) + " holds " + v +
+             "; a MERL file needs finite values >= 0 (NaN: a batch had no sample there; simulate more samples)");
+    }
 }
 
 double BrdfInterpolation::operator()(double theta_i, double theta_o, double phi, int c) const {

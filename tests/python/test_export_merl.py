@@ -202,6 +202,12 @@ def test_delta_lobes_left_out_are_named_in_a_warning(cli, tmp_path):
     lines = err.strip().splitlines()
     assert len(lines) == 1 and "warning: brdf_delta: delta lobes" in lines[0] and str(out) in lines[0], err
     assert f"up to {delta.max():.3g} of the incident energy" in lines[0], (err, delta.max())
+    # Without the delta table in the file the export cannot check: it says so (it said nothing).
+    h5 = tmp_path / "alone.h5"
+    mcref.write_tables(str(h5), [tables["brdf"]])
+    code, _, err = cli("export-brdf", str(h5), "--table", "brdf", "--format", "merl", "-o", str(tmp_path / "a.binary"),
+                       "--quiet")
+    assert code == 0 and "no table brdf_delta" in err and "cannot be checked" in err, err
     # The diffuse micrograin table of the round trip: no delta lobes, no warning.
     h5 = tmp_path / "diffuse.h5"
     mcref.write_tables(str(h5), mcref.simulate(brdf_config(), seed=1))
@@ -213,3 +219,27 @@ def test_delta_lobes_left_out_are_named_in_a_warning(cli, tmp_path):
 def test_the_format_is_required(cli, tmp_path):
     code, _, err = cli("export-brdf", str(tmp_path / "t.h5"), "--table", "brdf", "-o", str(tmp_path / "o.binary"))
     assert code == 2 and "the output format is required (--format merl)" in err, err
+
+
+@pytest.mark.parametrize("change, why", [
+    ("nan", "holds nan"), ("negative", "holds -1"), ("phi", "has phi over [-180, 0] deg"),
+])
+def test_cells_and_azimuths_merl_cannot_hold_are_refused(cli, tmp_path, change, why):
+    """A NaN, infinite or negative cell was spread over thousands of MERL cells, and a phi axis over
+    [-pi, 0] (of the right width) held one value everywhere; both exported with exit 0."""
+    theta_i = mcref.Axis.points("theta_i", "rad", list(np.radians(range(0, 90, 10))))
+    if change == "phi":
+        t = constant_table(theta_i, phi_deg=np.linspace(-180, 0, 9))
+    else:
+        t = constant_table(theta_i)
+        value = 2 * np.ones(t.value.shape)
+        value[3, 0, 2, 4, 1] = np.nan if change == "nan" else -2
+        t = mcref.Table("brdf", "brdf", t.axes, value, 2 * np.ones(t.value.shape), batches=2, units="1/sr")
+    h5 = tmp_path / "t.h5"
+    mcref.write_tables(str(h5), [t])
+    out = tmp_path / "t.binary"
+    code, _, err = cli("export-brdf", str(h5), "--table", "brdf", "--format", "merl", "-o", str(out))
+    assert code == 2, err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and why in lines[0], err
+    assert not out.exists()

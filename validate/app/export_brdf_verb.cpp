@@ -36,20 +36,36 @@ const char* kHelp =
 // Warns (whatever --quiet says: the output lacks energy) if the exported
 // table's delta lobes (a smooth mirror, the unscattered light) carry energy,
 // which a MERL file cannot hold: their table <base>_delta (brdf_tally.cpp),
-// total component (the last), largest over theta_i and channels.
+// the exported table's component, largest over theta_i and channels; and
+// that it could not check when the file lacks that table.
 void warn_of_delta_lobes(const TableFile& file, const Table& t, const std::string& output) {
   const auto part = t.attributes.find("component");
   if (part == t.attributes.end()) return;
   const std::string suffix = part->second == "total" ? "" : "_" + part->second;
   const std::string base = t.name.substr(0, t.name.size() - suffix.size());
   const Table* delta = file.find(base + "_delta");
-  if (!delta || delta->axes.size() != 4) return;
+  if (!delta || delta->axes.size() != 4) {
+    if (t.attributes.count("delta_lobes"))
+      std::fprintf(stderr,
+                   "mcref export-brdf: warning: %s: the file has no table %s_delta, so whether delta lobes (a smooth "
+                   "mirror or unscattered light) carry energy that %s leaves out cannot be checked\n",
+                   t.name.c_str(), base.c_str(), output.c_str());
+    return;
+  }
   const std::vector<double> v = delta->values();
   const std::size_t comps = delta->axes[2].size(), channels = delta->axes[3].size(), per_ti = v.size() / delta->axes[0].size();
+  // The component's index among the delta table's (its attribute "components": names, then the total last).
+  std::size_t comp = comps - 1;
+  const auto names = delta->attributes.find("components");
+  if (part->second != "total" && names != delta->attributes.end()) {
+    std::size_t k = 0, from = 0;
+    for (std::size_t to; (to = names->second.find(',', from)) != std::string::npos; from = to + 1, ++k)
+      if (names->second.compare(from, to - from, part->second) == 0) comp = k;
+  }
   double largest = 0;
   std::size_t at = 0;
   for (std::size_t n = 0; n < v.size(); ++n)
-    if ((n / channels) % comps == comps - 1 && v[n] > largest) largest = v[n], at = n / per_ti;
+    if ((n / channels) % comps == comp && v[n] > largest) largest = v[n], at = n / per_ti;
   if (!(largest > 0)) return;
   std::fprintf(stderr,
                "mcref export-brdf: warning: %s: delta lobes (a smooth mirror or unscattered light) carry up to %.3g of the "
