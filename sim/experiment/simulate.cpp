@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "sim/experiment/config_error.h"
 #include "sim/experiment/simulate_kinds.h"
 #include "sim/experiment/table_plan.h"
 
@@ -25,8 +26,18 @@ std::vector<Table> simulate(const Experiment& ex, const SimulateOptions& options
   const int threads = effective_threads(ex, options.threads);
   const Communicator& ranks = *options.ranks;
   check_table_names(ex, options.tables, "SimulateOptions", "tables");
-  // Before anything is allocated; rank 0 (which holds the tables) decides for every rank.
-  check_on_root(ranks, [&] { check_memory(ex, threads, options.keep_batch_values); });
+  // Before anything is allocated, on every rank (each holds the tables, and
+  // its node has its own budget); and every rank simulates rank 0's
+  // experiment (another file at the same path on a node would add its
+  // batches to rank 0's tables unseen).
+  std::string text = ex.text;
+  ranks.broadcast(text);
+  check_on_every_rank(ranks, [&] {
+    if (text != ex.text)
+      throw ConfigError(ex.file, "", "differs from rank 0's copy of the experiment (another file at this path on this node?); "
+                                     "every rank must read the same experiment");
+    check_memory(ex, threads, options.keep_batch_values);
+  });
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
   double work = 0;
   for (const Measure& m : ex.measures) work += work_units(m);

@@ -15,6 +15,8 @@ std::string read_input_file(const std::string& path, const std::string& from_fil
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw ConfigError(where, key, what + "no such file");
   if (std::filesystem::is_directory(path, ec)) throw ConfigError(where, key, what + "is a directory, not a file");
+  // (A FIFO or a device would block the read, or never end.)
+  if (!std::filesystem::is_regular_file(path, ec)) throw ConfigError(where, key, what + "is not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(where, key, what + "cannot be read");
   std::stringstream buf;

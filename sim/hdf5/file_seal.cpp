@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -71,6 +72,10 @@ void seal_file(const std::string& path) {
 }
 
 bool check_seal(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw ConfigError(path, "", "is a directory, not a file");
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw ConfigError(path, "", "is not a regular file");  // (a FIFO would block the read)
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path, "", "cannot be read");
   std::string block(kSealBlockBytes, '\0');

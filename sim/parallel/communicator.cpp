@@ -238,4 +238,15 @@ void check_on_root(const Communicator& comm, const std::function<void()>& check)
   agree_on_error(comm, error);
 }
 
+void check_on_every_rank(const Communicator& comm, const std::function<void()>& check) {
+  std::string error;
+  try {
+    check();
+  } catch (const ConfigError& e) {
+    if (comm.size() == 1) throw;
+    error = e.what();
+  }
+  agree_on_error(comm, error);
+}
+
 }  // namespace mcref

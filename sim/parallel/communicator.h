@@ -99,4 +99,8 @@ std::string join_agreement(const std::string& error);
 // writes there) and throws its ConfigError on every rank.
 void check_on_root(const Communicator& comm, const std::function<void()>& check);
 
+// Runs `check` on every rank (e.g. each node's memory budget) and throws the
+// lowest failing rank's ConfigError on every rank.
+void check_on_every_rank(const Communicator& comm, const std::function<void()>& check);
+
 }  // namespace mcref

@@ -103,6 +103,40 @@ TEST_F(SimulateMpi, ARankFailingItsChecksAloneIsNamedAndNoRankWaits) {
 // goes to a file: the progress is a log there (a plain line a minute), so a
 // short run writes no progress at all, only its summary; no \r redraws and no
 // escape codes (they were written to the file).
+// Every rank must simulate rank 0's experiment and fit its own node's memory
+// budget: a rank whose copy of the file differs (here a substrate albedo of
+// 0.1 against 0.6: its batches were added to rank 0's tables, exit 0, and the
+// file's config said 0.6), or whose budget is too small (only rank 0's was
+// checked), is named and every rank exits 2.
+TEST_F(SimulateMpi, EveryRankChecksItsExperimentAndItsMemory) {
+  const std::string source = std::string(MCREF_SOURCE_DIR) + "/validate/experiments/slab_single_layer.toml";
+  struct Case {
+    std::string setup, env1, expected;
+  };
+  const std::vector<Case> cases{
+      {"sed 's/^seed = .*/seed = 12345/' r0/e.toml > r1/e.toml", "", "differs from rank 0's copy"},
+      {"cp r0/e.toml r1/e.toml", "if [ $OMPI_COMM_WORLD_RANK = 1 ]; then export MCREF_MEMORY_LIMIT=1K; fi; ", "budget of 1 KB"},
+  };
+  for (const Case& c : cases) {
+    fs::remove_all(dir_ / "r0");
+    fs::remove_all(dir_ / "r1");
+    fs::create_directories(dir_ / "r0");
+    fs::create_directories(dir_ / "r1");
+    fs::copy_file(source, dir_ / "r0" / "e.toml");
+    ASSERT_EQ(shell(dir_, c.setup, nullptr), 0);
+    std::string err;
+    const int code = shell(dir_, "rm -f rc.*; timeout 120 " + mpirun(2) + "sh -c 'cd r$OMPI_COMM_WORLD_RANK && " + c.env1 + "\"" + MCREF_BINARY +
+                                     "\" simulate e.toml -o ../t.h5 --set run.batches=4; echo $? > ../rc.$OMPI_COMM_WORLD_RANK'",
+                           &err);
+    EXPECT_NE(code, 124) << "the job hung";
+    EXPECT_EQ(rank_codes(dir_, 2), (std::vector<int>{2, 2})) << c.expected << ": " << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    EXPECT_NE(err.find("mcref: error: rank 1 of 2: "), std::string::npos) << err;
+    EXPECT_NE(err.find(c.expected), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(dir_ / "t.h5"));
+  }
+}
+
 TEST_F(SimulateMpi, ProgressUnderMpirunIsALogNotARedrawnLine) {
   std::string err;
   ASSERT_EQ(shell(dir_, "env -u CI " + mcref_ranks(2, "simulate " + experiment("slab_single_layer") +

@@ -428,6 +428,18 @@ TEST_F(Cli, OutputsThatAreNotRegularFilesAreRefused) {
 
 // A symbolic link given as an output is itself replaced by the new file; the
 // file it points to is left as it was (README, "What mcref guarantees").
+// An input that is a FIFO blocked the read for ever (`mcref info fifo`,
+// `mcref simulate fifo`): refused in one line.
+TEST_F(Cli, InputsThatAreNotRegularFilesAreRefused) {
+  ASSERT_EQ(mkfifo(path("fifo").c_str(), 0644), 0);
+  for (const std::string& verb : {"info " + quote(path("fifo")), "simulate " + quote(path("fifo")) + " -o " + quote(path("t.h5")) + " --quiet"}) {
+    const Result r = shell("timeout 20 " + quote(MCREF_BINARY) + " " + verb);
+    EXPECT_EQ(r.exit_code, 2) << verb << " (124: it hung): " << r.err;
+    expect_one_line_error(r, {"fifo", "is not a regular file"});
+  }
+  EXPECT_FALSE(fs::exists(path("t.h5")));
+}
+
 TEST_F(Cli, AnOutputThatIsALinkIsReplacedNotItsTarget) {
   const std::string exp = write("x.toml", experiment());
   const std::string target = write("target.h5", "keep");
