@@ -226,16 +226,7 @@ std::string join_agreement(const std::string& error) {
 }
 
 void check_on_root(const Communicator& comm, const std::function<void()>& check) {
-  std::string error;
-  if (comm.root()) {
-    try {
-      check();
-    } catch (const ConfigError& e) {
-      if (comm.size() == 1) throw;
-      error = e.what();
-    }
-  }
-  agree_on_error(comm, error);
+  check_on_every_rank(comm, comm.root() ? check : [] {});
 }
 
 void check_on_every_rank(const Communicator& comm, const std::function<void()>& check) {
