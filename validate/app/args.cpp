@@ -36,7 +36,8 @@ Args parse_args(const std::vector<std::string>& args, const std::string& verb, b
     if (s == "--help" || s == "-h") a.help = true;
     else if (s == "-o" || s == "--output") given_once(seen, "-o", s), a.output = value(i);
     else if (s == "--quiet" || s == "-q") a.quiet = true;
-    else if (s == "--threads") given_once(seen, s, s), a.threads = static_cast<int>(number(i, 1, 1024));
+    else if (s == "--threads" && (verb == "simulate" || verb == "validate" || verb == "dataset"))  // (the verbs that use it)
+      given_once(seen, s, s), a.threads = static_cast<int>(number(i, 1, 1024));
     else if (allow_set_and_seed && s == "--seed") given_once(seen, s, s), a.seed = number(i, 0, 9223372036854775807LL);
     else if (allow_set_and_seed && s == "--set") a.sets.push_back(value(i));
     else if (verb == "validate" && s == "--force") a.force = true;

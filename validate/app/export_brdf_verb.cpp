@@ -82,6 +82,8 @@ int export_brdf(const std::vector<std::string>& raw) {
   for (std::size_t i = 0; i < raw.size(); ++i) {
     if (raw[i] == "--table" || raw[i] == "--format") {
       if (i + 1 >= raw.size()) throw ConfigError("command line", raw[i], "needs a value");
+      if (raw[i + 1].rfind("--", 0) == 0)  // (--table --format merl took "--format" as the table)
+        throw ConfigError("command line", raw[i], "needs a value, and " + raw[i + 1] + " is an option");
       given_once(seen, raw[i], raw[i]);
       (raw[i] == "--table" ? table : format) = raw[i + 1];
       ++i;

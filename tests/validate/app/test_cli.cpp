@@ -131,6 +131,13 @@ TEST_F(Cli, UnknownVerbAndUnknownOptionAreRejected) {
   const std::string out = path("out.h5");
   expect_one_line_error(mcref("simulate " + quote(exp) + " -o " + quote(out) + " --frobnicate"), {"--frobnicate"});
   expect_one_line_error(mcref("info --frobnicate x.h5"), {"--frobnicate"});
+  // --threads where nothing runs in parallel is refused, not ignored.
+  expect_one_line_error(mcref("export-vdb " + quote(exp) + " -o " + quote(path("g.vdb")) + " --threads 2"),
+                        {"--threads", "unknown option for 'mcref export-vdb'"});
+  expect_one_line_error(mcref("info " + quote(exp) + " --threads 2"), {"--threads", "unknown option for 'mcref info'"});
+  // A missing value is named, not taken from the next option.
+  expect_one_line_error(mcref("export-brdf x.h5 --table --format merl -o " + quote(path("m.binary"))),
+                        {"--table", "needs a value, and --format is an option"});
   expect_one_line_error(mcref("simulate " + quote(exp) + " -o " + quote(out) + " --threads 0"), {"--threads", "[1, 1024]"});
   expect_one_line_error(mcref("simulate " + quote(exp) + " -o " + quote(out) + " --seed -3"), {"--seed"});
   expect_one_line_error(mcref("simulate " + quote(exp) + " --quiet"), {"-o"});
